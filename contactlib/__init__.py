@@ -1,0 +1,12 @@
+"""contactlib: rough-surface contact mechanics with FFT boundary elements.
+
+The public API: :func:`solve` for frictionless normal contact, :mod:`contactlib.surfaces` to
+generate surfaces, :mod:`contactlib.analysis` to measure them and their contact fields.
+"""
+
+from . import analysis, reference, surfaces
+from ._version import __version__
+from .contact import ConvergenceError, solve
+from .grid import Grid
+
+__all__ = ["solve", "ConvergenceError", "Grid", "surfaces", "analysis", "reference", "__version__"]

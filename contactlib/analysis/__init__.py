@@ -1,0 +1,8 @@
+"""Measurements of surfaces and contact fields."""
+
+from .anisotropy import anisotropy_tensor
+from .contact import contact_area_fraction, contact_clusters
+from .statistics import fit_hurst, psd, rms_height, rms_slope
+
+__all__ = ["rms_height", "rms_slope", "psd", "fit_hurst", "anisotropy_tensor", "contact_area_fraction",
+           "contact_clusters"]

@@ -1,0 +1,225 @@
+"""Public entry point for frictionless normal contact: :func:`solve`."""
+
+from __future__ import annotations
+
+import math
+import time
+
+import numpy as np
+import xarray as xr
+
+from ._version import __version__
+from .grid import Grid
+from .labels import attrs_for
+from .materials import contact_modulus
+from .operators import KERNELS, Compliance
+from .solvers import ContactState, solve_active_set, solve_polonsky_keer
+
+METHODS = ("cg", "active-set")
+
+
+class ConvergenceError(RuntimeError):
+    """A solve did not reach its tolerance within ``max_iter``.
+
+    Attributes
+    ----------
+    residual : float
+        The residual reached.
+    dataset : xarray.Dataset
+        The partial (unconverged) state, labelled like a converged one, ``attrs['converged'] = 0``.
+    """
+
+    def __init__(self, message: str, *, residual: float, dataset: xr.Dataset):
+        super().__init__(message)
+        self.residual = residual
+        self.dataset = dataset
+
+
+def grid_of(heights, length=None) -> tuple[np.ndarray, Grid, tuple[str, ...], dict]:
+    """Heights array, grid, dim names and coords of a DataArray or ndarray input."""
+    if isinstance(heights, xr.DataArray):
+        values = np.asarray(heights.values, dtype=float)
+        dims = tuple(heights.dims)
+        if length is None:
+            lengths = []
+            for d in dims:
+                if d not in heights.coords:
+                    raise ValueError(f"heights: dimension {d!r} has no coordinate; pass length=")
+                c = np.asarray(heights[d].values, dtype=float)
+                if c.size < 2:
+                    raise ValueError(f"heights: grid smaller than 2 points along {d!r}")
+                lengths.append(float(c[1] - c[0]) * c.size)
+            lengths = tuple(lengths)
+        else:
+            lengths = _lengths(length, values.ndim)
+        coords = {d: heights[d] for d in dims if d in heights.coords}
+    else:
+        values = np.asarray(heights, dtype=float)
+        if values.ndim not in (1, 2):
+            raise ValueError(f"heights must be 1D or 2D, got {values.ndim} dimensions")
+        dims = ("x", "y")[: values.ndim]
+        lengths = _lengths(1.0 if length is None else length, values.ndim)
+        coords = {}
+    if values.ndim not in (1, 2):
+        raise ValueError(f"heights must be 1D or 2D, got {values.ndim} dimensions")
+    if min(values.shape) < 2:
+        raise ValueError(f"heights: grid smaller than 2 points, shape {values.shape}")
+    if not np.all(np.isfinite(values)):
+        raise ValueError("heights contain NaN or infinite values")
+    grid = Grid(values.shape, lengths)
+    if not coords:
+        coords = {d: (d, c) for d, c in zip(dims, grid.coordinates())}
+    return np.ascontiguousarray(values), grid, dims, coords
+
+
+def _lengths(length, ndim: int) -> tuple[float, ...]:
+    lengths = tuple(float(v) for v in np.broadcast_to(np.asarray(length, dtype=float), (ndim,)))
+    for v in lengths:
+        if not math.isfinite(v) or v <= 0:
+            raise ValueError(f"length must be finite and > 0, got {length!r}")
+    return lengths
+
+
+def _check_loads(mean_pressure, penetration) -> None:
+    if (mean_pressure is None) == (penetration is None):
+        raise ValueError("give exactly one of mean_pressure or penetration")
+    if mean_pressure is not None and (not math.isfinite(mean_pressure) or mean_pressure < 0):
+        raise ValueError(f"mean_pressure must be finite and >= 0, got {mean_pressure!r}")
+    if penetration is not None and not math.isfinite(penetration):
+        raise ValueError(f"penetration must be finite, got {penetration!r}")
+
+
+def solve(
+    heights,
+    *,
+    E: float,
+    nu: float,
+    mean_pressure: float | None = None,
+    penetration: float | None = None,
+    periodic: bool = True,
+    tol: float = 1e-8,
+    max_iter: int = 10_000,
+    kernel: str = "spectral",
+    method: str = "cg",
+    length=None,
+    initial_pressure=None,
+    length_unit: str = "m",
+    pressure_unit: str = "Pa",
+) -> xr.Dataset:
+    """Frictionless normal contact of a rigid rough surface on an elastic half-space.
+
+    Parameters
+    ----------
+    heights : xarray.DataArray or ndarray
+        Rigid surface heights [length], 1D (plane strain, per unit width) or 2D. Higher points
+        touch first. A DataArray's coordinates give the physical size; an ndarray needs ``length``.
+    E, nu : float
+        Young's modulus [pressure] and Poisson ratio of the body, ``E > 0``, ``-1 < nu <= 0.5``.
+    mean_pressure : float
+        Load control: mean pressure over the window [pressure] (1D: line load per unit width over
+        the window length). Non-periodic: total load divided by the window area.
+    penetration : float
+        Displacement control: rigid approach from first contact of the highest point [length].
+        Periodic displacements are zero-mean (the q = 0 mode of a half-space is infinite), so the
+        approach is measured against the mean deformed plane; beyond full contact it does not fix
+        the load and is refused.
+    periodic : bool
+        Periodic window (default) or an isolated footprint (zero padding, free boundary).
+    tol : float
+        Target of the scale-free residual (:func:`contactlib.solvers.contact_residual`).
+    max_iter : int
+        Iteration bound; beyond it :class:`ConvergenceError` is raised with the partial state.
+    kernel : {"spectral", "love"}
+        Continuous multiplier ``2/(E*|q|)`` or Love's uniform-element kernel.
+    method : {"cg", "active-set"}
+        Polonsky-Keer constrained conjugate gradients, or the seed paper's active-set +
+        Gauss-Seidel scheme (small grids; a cross-check).
+    length : float or tuple, optional
+        Window size [length] for ndarray heights (default 1).
+    initial_pressure : ndarray, optional
+        Warm start for ``method="cg"``.
+    length_unit, pressure_unit : str
+        udunits strings written to the output's ``units`` attributes.
+
+    Returns
+    -------
+    xarray.Dataset
+        ``pressure``, ``gap``, ``displacement`` fields and scalars ``contact_area``,
+        ``mean_pressure``, ``penetration``, ``iterations``, ``residual``.
+
+    Examples
+    --------
+    >>> import contactlib
+    >>> h = contactlib.surfaces.self_affine(64, hurst=0.8, q_roll=2, q_cutoff=16, rms_slope=0.1, seed=1)
+    >>> out = contactlib.solve(h, E=1.0, nu=0.5, mean_pressure=0.01)
+    >>> 0 < float(out.contact_area) < 1
+    True
+    """
+    values, grid, dims, coords = grid_of(heights, length)
+    E_star = contact_modulus(E, nu)
+    _check_loads(mean_pressure, penetration)
+    if not (isinstance(tol, (int, float)) and math.isfinite(tol) and tol > 0):
+        raise ValueError(f"tol must be finite and > 0, got {tol!r}")
+    if int(max_iter) < 1:
+        raise ValueError(f"max_iter must be >= 1, got {max_iter!r}")
+    if kernel not in KERNELS:
+        raise ValueError(f"kernel must be one of {KERNELS}, got {kernel!r}")
+    if method not in METHODS:
+        raise ValueError(f"method must be one of {METHODS}, got {method!r}")
+    if periodic and penetration is not None and penetration >= values.max() - values.mean():
+        raise ValueError(
+            f"penetration {penetration!r} reaches full contact (max - mean height = "
+            f"{values.max() - values.mean():.6g}); in a periodic window the load is then undetermined: "
+            "give mean_pressure instead"
+        )
+    operator = Compliance(grid, E_star=E_star, kernel=kernel, periodic=periodic)
+    start = time.perf_counter()
+    if method == "cg":
+        warm = None if initial_pressure is None else np.asarray(initial_pressure, dtype=float)
+        if warm is not None and warm.shape != values.shape:
+            raise ValueError(f"initial_pressure has shape {warm.shape}, heights {values.shape}")
+        state = solve_polonsky_keer(
+            operator, values, mean_pressure=mean_pressure, penetration=penetration, tol=tol,
+            max_iter=int(max_iter), initial_pressure=warm, self_compliance=operator.self_compliance(),
+        )
+    else:
+        state = solve_active_set(operator, values, mean_pressure=mean_pressure, penetration=penetration,
+                                 tol=tol, max_iter=int(max_iter))
+    wall = time.perf_counter() - start
+    ds = to_dataset(state, dims=dims, coords=coords, length_unit=length_unit, pressure_unit=pressure_unit)
+    ds.attrs.update({
+        "solver": state.solver, "kernel": kernel, "periodic": int(periodic), "tol": tol,
+        "max_iter": int(max_iter), "E": float(E), "nu": float(nu), "E_star": E_star,
+        "load_control": "mean_pressure" if mean_pressure is not None else "penetration",
+        "converged": int(state.converged), "wall_time": wall, "contactlib_version": __version__,
+        "window_lengths": list(grid.lengths),
+    })
+    if not state.converged:
+        raise ConvergenceError(
+            f"{state.solver} did not converge in {state.iterations} iterations: residual "
+            f"{state.residual:.3e} > tol {tol:.1e}", residual=state.residual, dataset=ds,
+        )
+    return ds
+
+
+def to_dataset(state: ContactState, *, dims, coords, length_unit="m", pressure_unit="Pa") -> xr.Dataset:
+    """Label a :class:`ContactState` as a CF-style Dataset."""
+    def a(name):
+        return attrs_for(name, length=length_unit, pressure=pressure_unit)
+
+    fields = {name: (dims, getattr(state, name), a(name)) for name in ("pressure", "gap", "displacement")}
+    scalars = {
+        "contact_area": float(np.count_nonzero(state.pressure > 0)) / state.pressure.size,
+        "mean_pressure": state.mean_pressure,
+        "penetration": state.penetration,
+        "iterations": state.iterations,
+        "residual": state.residual,
+    }
+    data = dict(fields)
+    data.update({k: ((), v, a(k)) for k, v in scalars.items()})
+    ds = xr.Dataset(data, coords=coords)
+    for d in dims:
+        if not ds[d].attrs:
+            ds[d].attrs.update(a(d))
+    ds.attrs["Conventions"] = "CF-1.10"
+    return ds

@@ -1,0 +1,139 @@
+"""The single FFT convention of contactlib.
+
+Real-to-complex transforms over all axes (``rfftn`` layout). Forward transforms are
+unnormalised; the ``1/N`` of the inverse is folded into the kernels by
+:func:`convolution_multiplier`, so that one forward + one inverse FFT gives a convolution.
+
+Plans are built once per (shape, threads) and per thread, with buffers reused across
+iterations and across solves of the same shape. FFTW wisdom is cached on disk so
+``FFTW_MEASURE`` planning is paid once per machine; :func:`export_wisdom` and
+:func:`import_wisdom` let a sweep ship the same plans to every worker, which keeps
+results bit-identical across workers and re-runs.
+"""
+
+from __future__ import annotations
+
+import os
+import threading
+from pathlib import Path
+
+import numpy as np
+import pyfftw
+
+_settings = {"threads": 1, "effort": "FFTW_MEASURE"}
+_local = threading.local()
+_wisdom_lock = threading.Lock()
+_wisdom_loaded = False
+
+
+def wisdom_path() -> Path:
+    """On-disk FFTW wisdom cache (``$CONTACTLIB_WISDOM`` overrides)."""
+    default = Path(os.environ.get("XDG_CACHE_HOME", Path.home() / ".cache")) / "contactlib" / "fftw-wisdom"
+    return Path(os.environ.get("CONTACTLIB_WISDOM", default))
+
+
+def set_fft_options(*, threads: int | None = None, effort: str | None = None) -> None:
+    """Set FFTW threads per transform and planner effort (``FFTW_ESTIMATE``/``MEASURE``/``PATIENT``)."""
+    if threads is not None:
+        if int(threads) < 1:
+            raise ValueError(f"threads must be >= 1, got {threads}")
+        _settings["threads"] = int(threads)
+    if effort is not None:
+        if effort not in ("FFTW_ESTIMATE", "FFTW_MEASURE", "FFTW_PATIENT", "FFTW_EXHAUSTIVE"):
+            raise ValueError(f"unknown FFTW planner effort {effort!r}")
+        _settings["effort"] = effort
+
+
+def fft_options() -> dict:
+    return dict(_settings)
+
+
+def export_wisdom() -> tuple[bytes, ...]:
+    return pyfftw.export_wisdom()
+
+
+def import_wisdom(wisdom: tuple[bytes, ...]) -> None:
+    pyfftw.import_wisdom(wisdom)
+
+
+def _load_wisdom_once() -> None:
+    global _wisdom_loaded
+    with _wisdom_lock:
+        if _wisdom_loaded:
+            return
+        _wisdom_loaded = True
+        try:
+            parts = wisdom_path().read_bytes().split(b"\n--contactlib--\n")
+            if len(parts) == 3:
+                pyfftw.import_wisdom(tuple(parts))
+        except OSError:
+            pass
+
+
+def _save_wisdom() -> None:
+    path = wisdom_path()
+    try:
+        path.parent.mkdir(parents=True, exist_ok=True)
+        tmp = path.with_suffix(f".{os.getpid()}.tmp")
+        tmp.write_bytes(b"\n--contactlib--\n".join(pyfftw.export_wisdom()))
+        os.replace(tmp, path)
+    except OSError:  # a read-only home is no reason to fail a solve
+        pass
+
+
+class RealFFT:
+    """Planned forward/inverse real FFT pair on aligned, reusable buffers.
+
+    ``real`` and ``spectrum`` are the work buffers; ``forward()`` maps real -> spectrum,
+    ``inverse()`` maps spectrum -> real (unnormalised, destroys ``spectrum``).
+    """
+
+    def __init__(self, shape: tuple[int, ...], threads: int, effort: str):
+        _load_wisdom_once()
+        spectral = tuple(shape[:-1]) + (shape[-1] // 2 + 1,)
+        self.shape = tuple(shape)
+        self.real = pyfftw.empty_aligned(shape, dtype="float64")
+        self.spectrum = pyfftw.empty_aligned(spectral, dtype="complex128")
+        axes = tuple(range(len(shape)))
+        self._fwd = pyfftw.FFTW(self.real, self.spectrum, axes=axes, flags=(effort,), threads=threads)
+        self._inv = pyfftw.FFTW(
+            self.spectrum, self.real, axes=axes, direction="FFTW_BACKWARD",
+            flags=(effort, "FFTW_DESTROY_INPUT"), threads=threads,
+        )
+        if effort != "FFTW_ESTIMATE":
+            _save_wisdom()
+
+    def forward(self) -> np.ndarray:
+        self._fwd.execute()
+        return self.spectrum
+
+    def inverse(self) -> np.ndarray:
+        self._inv.execute()
+        return self.real
+
+
+def get_fft(shape: tuple[int, ...]) -> RealFFT:
+    """The cached plan for ``shape`` in this thread (built on first use)."""
+    cache = getattr(_local, "plans", None)
+    if cache is None:
+        cache = _local.plans = {}
+    key = (tuple(shape), _settings["threads"], _settings["effort"])
+    plan = cache.get(key)
+    if plan is None:
+        plan = cache[key] = RealFFT(tuple(shape), _settings["threads"], _settings["effort"])
+    return plan
+
+
+def convolution_multiplier(transfer: np.ndarray, shape: tuple[int, ...]) -> np.ndarray:
+    """Fold the inverse-FFT normalisation into a real Fourier multiplier."""
+    return np.ascontiguousarray(transfer / float(np.prod(shape)), dtype="float64")
+
+
+def rfftn(field: np.ndarray) -> np.ndarray:
+    """Forward real FFT (unnormalised), numpy's deterministic pocketfft: for setup, not loops."""
+    return np.fft.rfftn(field)
+
+
+def irfftn(spectrum: np.ndarray, shape: tuple[int, ...]) -> np.ndarray:
+    """Inverse of :func:`rfftn` (normalised by 1/N)."""
+    return np.fft.irfftn(spectrum, s=shape)

@@ -1,0 +1,30 @@
+"""The single registry of variable labels: name -> units and long_name.
+
+Units are templates: ``{length}`` and ``{pressure}`` are filled with the units the caller
+declares (SI by default), because the solvers themselves are unit-agnostic.
+"""
+
+from __future__ import annotations
+
+VARIABLES: dict[str, dict[str, str]] = {
+    "x": {"units": "{length}", "long_name": "position along x"},
+    "y": {"units": "{length}", "long_name": "position along y"},
+    "height": {"units": "{length}", "long_name": "rigid surface height"},
+    "pressure": {"units": "{pressure}", "long_name": "contact pressure (compressive positive)"},
+    "gap": {"units": "{length}", "long_name": "interfacial gap"},
+    "displacement": {"units": "{length}", "long_name": "normal surface displacement (positive into the body)"},
+    "contact_area": {"units": "1", "long_name": "contact area fraction"},
+    "mean_pressure": {"units": "{pressure}", "long_name": "mean contact pressure over the window"},
+    "penetration": {"units": "{length}", "long_name": "rigid approach from first contact"},
+    "iterations": {"units": "1", "long_name": "solver iterations"},
+    "residual": {"units": "1", "long_name": "scale-free contact residual"},
+    "wavenumber": {"units": "rad {length}-1", "long_name": "wavenumber |q|"},
+    "psd": {"units": "{length}4", "long_name": "radially averaged power spectral density"},
+    "psd_1d": {"units": "{length}3", "long_name": "power spectral density of a profile"},
+}
+
+
+def attrs_for(name: str, *, length: str = "m", pressure: str = "Pa") -> dict[str, str]:
+    """CF attributes of ``name`` with the declared units substituted."""
+    entry = VARIABLES[name]
+    return {"units": entry["units"].format(length=length, pressure=pressure), "long_name": entry["long_name"]}

@@ -1,0 +1,79 @@
+"""Apply a compliance kernel: pressure field -> surface displacement.
+
+A :class:`Compliance` wraps one kernel on one grid. Periodic problems multiply the rfft of
+the pressure by a Fourier multiplier; non-periodic problems embed the pressure in a doubled,
+zero-padded box and convolve with real-space influence coefficients, which is the exact
+linear (aperiodic) convolution. Solvers only see ``apply(pressure) -> displacement``.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from . import fft
+from .grid import Grid
+from .kernels import elastic
+
+KERNELS = ("spectral", "love")
+
+
+class Compliance:
+    """Normal compliance of an elastic half-space on ``grid``.
+
+    Parameters
+    ----------
+    grid : Grid
+    E_star : float
+        Contact modulus ``E / (1 - nu**2)`` [pressure].
+    kernel : {"spectral", "love"}
+        ``spectral``: continuous multiplier ``2/(E*|q|)`` (non-periodic: collocated point loads);
+        ``love``: uniform pressure on each element (Love), summed over periodic images.
+    periodic : bool
+    """
+
+    def __init__(self, grid: Grid, *, E_star: float, kernel: str = "spectral", periodic: bool = True):
+        if kernel not in KERNELS:
+            raise ValueError(f"kernel must be one of {KERNELS}, got {kernel!r}")
+        self.grid, self.E_star, self.kernel, self.periodic = grid, float(E_star), kernel, bool(periodic)
+        self.work_shape = grid.shape if periodic else grid.padded().shape
+        if periodic:
+            build = elastic.halfspace_spectral_multiplier if kernel == "spectral" else elastic.halfspace_love_multiplier
+            transfer = build(grid, self.E_star)
+        else:
+            build = elastic.halfspace_point_influence if kernel == "spectral" else elastic.halfspace_love_influence
+            transfer = np.fft.rfftn(build(grid, self.E_star)).real
+        self.multiplier = fft.convolution_multiplier(transfer, self.work_shape)
+        self._block = tuple(slice(0, n) for n in grid.shape)
+
+    def __call__(self, pressure: np.ndarray, out: np.ndarray | None = None) -> np.ndarray:
+        """Displacement [length] due to ``pressure`` [pressure]; writes into ``out`` if given."""
+        plan = fft.get_fft(self.work_shape)
+        if self.periodic:
+            plan.real[...] = pressure
+        else:
+            plan.real.fill(0.0)
+            plan.real[self._block] = pressure
+        spectrum = plan.forward()
+        spectrum *= self.multiplier
+        real = plan.inverse()
+        if out is None:
+            return real[self._block].copy()
+        out[...] = real[self._block]
+        return out
+
+    def response(self) -> np.ndarray:
+        """Displacement field on the work grid due to unit pressure on the element at the origin."""
+        unit = np.zeros(self.work_shape)
+        unit[(0,) * self.grid.dim] = 1.0
+        return np.fft.irfftn(np.fft.rfftn(unit) * self.multiplier * np.prod(self.work_shape), s=self.work_shape)
+
+    def self_compliance(self) -> float:
+        """Displacement of an element under its own unit pressure [length/pressure]."""
+        return float(self.response()[(0,) * self.grid.dim])
+
+    def matrix(self, flat_indices: np.ndarray) -> np.ndarray:
+        """Dense influence matrix restricted to the given (flattened) elements: for small grids."""
+        resp = self.response()
+        idx = np.unravel_index(np.asarray(flat_indices), self.grid.shape)
+        diff = tuple((a[:, None] - a[None, :]) % n for a, n in zip(idx, self.work_shape))
+        return resp[diff]

@@ -1,0 +1,43 @@
+"""Hertz contact of a rigid paraboloid (sphere) or cylinder on an elastic half-space.
+
+Johnson, *Contact Mechanics* (1985), sections 4.2 (cylinder, plane strain) and 3.4 (sphere).
+``E_star = E / (1 - nu^2)`` [pressure], ``radius`` R [length].
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+
+def sphere_load(penetration: float, *, radius: float, E_star: float) -> float:
+    """Total load P = (4/3) E* R^(1/2) d^(3/2) [force]."""
+    return 4.0 / 3.0 * E_star * np.sqrt(radius) * penetration**1.5
+
+
+def sphere_contact_radius(penetration: float, *, radius: float) -> float:
+    """Contact radius a = sqrt(R d) [length]."""
+    return float(np.sqrt(radius * penetration))
+
+
+def sphere_penetration(load: float, *, radius: float, E_star: float) -> float:
+    """Approach d = (3 P / (4 E* sqrt(R)))^(2/3) [length]."""
+    return float((3.0 * load / (4.0 * E_star * np.sqrt(radius))) ** (2.0 / 3.0))
+
+
+def sphere_pressure(r, *, load: float, radius: float, E_star: float):
+    """Pressure p(r) = p0 sqrt(1 - r^2/a^2), p0 = 3P/(2 pi a^2) [pressure]."""
+    a = sphere_contact_radius(sphere_penetration(load, radius=radius, E_star=E_star), radius=radius)
+    p0 = 3.0 * load / (2.0 * np.pi * a**2)
+    return p0 * np.sqrt(np.clip(1.0 - (np.asarray(r) / a) ** 2, 0.0, None))
+
+
+def cylinder_half_width(line_load: float, *, radius: float, E_star: float) -> float:
+    """Half-width b = sqrt(4 P' R / (pi E*)) for line load P' [force/length]."""
+    return float(np.sqrt(4.0 * line_load * radius / (np.pi * E_star)))
+
+
+def cylinder_pressure(x, *, line_load: float, radius: float, E_star: float):
+    """Pressure p(x) = p0 sqrt(1 - x^2/b^2), p0 = 2 P' / (pi b) [pressure]."""
+    b = cylinder_half_width(line_load, radius=radius, E_star=E_star)
+    p0 = 2.0 * line_load / (np.pi * b)
+    return p0 * np.sqrt(np.clip(1.0 - (np.asarray(x) / b) ** 2, 0.0, None))

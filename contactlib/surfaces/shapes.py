@@ -1,0 +1,91 @@
+"""Deterministic geometries: wavy profiles and surfaces, paraboloids, spherical asperity fields."""
+
+from __future__ import annotations
+
+import numpy as np
+import xarray as xr
+
+from ..grid import Grid
+from ..labels import attrs_for
+
+
+def _as_dataarray(values, grid: Grid, length_unit: str, **attrs) -> xr.DataArray:
+    dims = ("x", "y")[: grid.dim]
+    coords = {d: (d, c, attrs_for(d, length=length_unit)) for d, c in zip(dims, grid.coordinates())}
+    a = attrs_for("height", length=length_unit)
+    a.update(attrs)
+    return xr.DataArray(values, dims=dims, coords=coords, name="height", attrs=a)
+
+
+def _grid(n, length, dim) -> Grid:
+    if dim not in (1, 2):
+        raise ValueError(f"dim must be 1 or 2, got {dim!r}")
+    if int(n) != n or n < 2:
+        raise ValueError(f"n must be an integer >= 2, got {n!r}")
+    return Grid((int(n),) * dim, (float(length),) * dim)
+
+
+def wavy(n: int, *, length: float = 1.0, amplitude: float, wavelengths: int = 1, dim: int = 1,
+         length_unit: str = "m") -> xr.DataArray:
+    """``amplitude cos(q x)`` (1D) or the egg-box ``amplitude cos(q x) cos(q y)`` (2D), with
+    ``q = 2 pi wavelengths / length``; a crest sits at the origin."""
+    if not amplitude > 0:
+        raise ValueError(f"amplitude must be > 0, got {amplitude!r}")
+    grid = _grid(n, length, dim)
+    q = 2 * np.pi * wavelengths / length
+    xs = grid.coordinates()
+    h = amplitude * np.cos(q * xs[0])
+    if dim == 2:
+        h = h[:, None] * np.cos(q * xs[1])[None, :]
+    return _as_dataarray(h, grid, length_unit, generator="contactlib.surfaces.wavy", amplitude=amplitude,
+                         wavelength=length / wavelengths)
+
+
+def paraboloid(n: int, *, length: float = 1.0, radius: float, dim: int = 2, length_unit: str = "m") -> xr.DataArray:
+    """Sphere (2D) or cylinder (1D) tip ``-r^2 / (2 radius)`` centred in the window, apex at 0."""
+    if not radius > 0:
+        raise ValueError(f"radius must be > 0, got {radius!r}")
+    grid = _grid(n, length, dim)
+    xs = [c - length / 2 for c in grid.coordinates()]
+    r2 = xs[0] ** 2 if dim == 1 else xs[0][:, None] ** 2 + xs[1][None, :] ** 2
+    return _as_dataarray(-r2 / (2 * radius), grid, length_unit, generator="contactlib.surfaces.paraboloid",
+                         radius=radius)
+
+
+def spheres(n: int, *, length: float = 1.0, radius, summit_height=0.0, centers=None, count: int | None = None,
+            lattice: int | None = None, height_std: float = 0.0, seed: int = 0, dim: int = 2,
+            length_unit: str = "m") -> xr.DataArray:
+    """Periodic field of spherical asperities on a flat base.
+
+    Either a square ``lattice`` of ``lattice x lattice`` asperities, ``count`` asperities at
+    uniformly random positions, or explicit ``centers`` (array ``(k, dim)`` [length]).
+    Summit heights are ``summit_height`` plus Gaussian scatter of std ``height_std``;
+    ``radius`` may be one value or one per asperity. Each cap is the exact sphere
+    ``z_k - R_k + sqrt(R_k^2 - r^2)`` (nearest periodic image), truncated at the base 0.
+    """
+    grid = _grid(n, length, dim)
+    rng = np.random.default_rng(seed)
+    if sum(v is not None for v in (centers, count, lattice)) != 1:
+        raise ValueError("give exactly one of centers, count or lattice")
+    if lattice is not None:
+        pos = (np.arange(lattice) + 0.5) * length / lattice
+        mesh = np.meshgrid(*([pos] * dim), indexing="ij")
+        centers = np.stack([m.ravel() for m in mesh], axis=1)
+    elif count is not None:
+        centers = rng.uniform(0, length, size=(int(count), dim))
+    centers = np.atleast_2d(np.asarray(centers, dtype=float))
+    k = centers.shape[0]
+    radii = np.broadcast_to(np.asarray(radius, dtype=float), (k,))
+    if np.any(radii <= 0):
+        raise ValueError("radius must be > 0")
+    tops = summit_height + height_std * rng.standard_normal(k)
+    xs = grid.coordinates()
+    h = np.zeros(grid.shape)
+    for c, R, z in zip(centers, radii, tops):
+        d2 = np.zeros(grid.shape)
+        for axis, x in enumerate(xs):
+            dx = (x - c[axis] + length / 2) % length - length / 2
+            d2 = d2 + (dx[:, None] ** 2 if (dim == 2 and axis == 0) else dx[None, :] ** 2 if dim == 2 else dx**2)
+        cap = np.where(d2 < R**2, z - R + np.sqrt(np.clip(R**2 - d2, 0, None)), -np.inf)
+        h = np.maximum(h, cap)
+    return _as_dataarray(h, grid, length_unit, generator="contactlib.surfaces.spheres", asperities=k, seed=seed)

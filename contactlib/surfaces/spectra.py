@@ -1,0 +1,28 @@
+"""Power spectral densities of self-affine surfaces, as functions of the wavevector grid."""
+
+from __future__ import annotations
+
+import numpy as np
+
+
+def self_affine_psd(q, *, q0: float, hurst: float, q_low: float, q_roll: float, q_cutoff: float, dim: int = 2):
+    """Unnormalised self-affine PSD (amplitude 1 on the plateau).
+
+    ``C(q) = 1`` for ``q_low <= q/q0 < q_roll``, ``(q / (q_roll q0))^-(dim + 2 H)`` up to
+    ``q_cutoff``, zero elsewhere (so the mean height is zero). ``q`` [1/length] may be an
+    effective (stretched) wavenumber for anisotropic surfaces.
+    """
+    k = np.asarray(q) / q0
+    exponent = -(dim + 2.0 * hurst)
+    with np.errstate(divide="ignore"):
+        c = np.where(k < q_roll, 1.0, (k / q_roll) ** exponent)
+    return np.where((k >= q_low) & (k <= q_cutoff) & (k > 0), c, 0.0)
+
+
+def stretched_wavenumber(qx, qy, *, anisotropy: float, angle: float):
+    """``|A R q|``: the wavevector rotated by ``angle`` and its normal component stretched by
+    ``anisotropy**-1/2``, so the slope tensor's eigenvalue ratio is ``anisotropy`` and its
+    principal (steepest) direction is ``angle``."""
+    q1 = qx * np.cos(angle) + qy * np.sin(angle)
+    q2 = -qx * np.sin(angle) + qy * np.cos(angle)
+    return np.sqrt(q1**2 + q2**2 / anisotropy)

@@ -1,0 +1,105 @@
+"""Random self-affine surfaces by filtering Gaussian white noise in Fourier space."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import xarray as xr
+
+from ..analysis import statistics
+from ..grid import Grid
+from ..labels import attrs_for
+from .spectra import self_affine_psd, stretched_wavenumber
+
+
+def self_affine(
+    n: int,
+    *,
+    length: float = 1.0,
+    hurst: float,
+    q_low: float = 1,
+    q_roll: float,
+    q_cutoff: float,
+    rms_height: float | None = None,
+    rms_slope: float | None = None,
+    seed: int = 0,
+    dim: int = 2,
+    anisotropy: float = 1.0,
+    angle: float = 0.0,
+    length_unit: str = "m",
+) -> xr.DataArray:
+    """Gaussian self-affine surface, periodic on ``length``.
+
+    Parameters
+    ----------
+    n : int
+        Points per side (``n x n`` in 2D, ``n`` in 1D).
+    length : float
+        Window size [length].
+    hurst : float
+        Hurst exponent H in (0, 1]: ``C(q) ~ q^-(2+2H)`` in 2D, ``q^-(1+2H)`` in 1D.
+    q_low, q_roll, q_cutoff : float
+        Band edges as multiples of ``q0 = 2 pi / length``: flat power on ``[q_low, q_roll)``,
+        power law on ``[q_roll, q_cutoff]``, zero beyond. ``q_cutoff <= n/2`` (Nyquist).
+    rms_height, rms_slope : float
+        Exactly one: the rms height [length] or rms gradient (spectral, exact for the band) [1].
+    seed : int
+        Seed of ``numpy.random.default_rng``: same seed, same surface, bit for bit.
+    anisotropy : float
+        Ratio gamma in (0, 1] of the eigenvalues of the slope tensor (seed 2, eq. 27); 1 is isotropic.
+    angle : float
+        Principal (steepest) direction of the slope tensor [rad] from the x axis.
+
+    Returns
+    -------
+    xarray.DataArray ``height`` with dims ``("x", "y")`` or ``("x",)``.
+    """
+    n = _check_int(n, "n", minimum=2)
+    if dim not in (1, 2):
+        raise ValueError(f"dim must be 1 or 2, got {dim!r}")
+    if not (0 < hurst <= 1):
+        raise ValueError(f"hurst must lie in (0, 1], got {hurst!r}")
+    if not (0 < q_low <= q_roll <= q_cutoff):
+        raise ValueError(f"need 0 < q_low <= q_roll <= q_cutoff, got {q_low}, {q_roll}, {q_cutoff}")
+    if q_cutoff > n / 2:
+        raise ValueError(f"q_cutoff={q_cutoff} exceeds the Nyquist wavenumber n/2={n / 2}")
+    if (rms_height is None) == (rms_slope is None):
+        raise ValueError("give exactly one of rms_height or rms_slope")
+    target = rms_height if rms_height is not None else rms_slope
+    if not (math.isfinite(target) and target > 0):
+        raise ValueError(f"{'rms_height' if rms_height is not None else 'rms_slope'} must be > 0, got {target!r}")
+    if not (0 < anisotropy <= 1):
+        raise ValueError(f"anisotropy must lie in (0, 1], got {anisotropy!r}")
+    if dim == 1 and (anisotropy != 1 or angle != 0):
+        raise ValueError("anisotropy and angle need dim=2")
+
+    grid = Grid((n,) * dim, (float(length),) * dim)
+    q0 = 2 * np.pi / length
+    if dim == 2:
+        qx, qy = grid.wavevectors()
+        q = stretched_wavenumber(qx, qy, anisotropy=anisotropy, angle=angle)
+    else:
+        q = grid.wavenumber()
+    psd = self_affine_psd(q, q0=q0, hurst=hurst, q_low=q_low, q_roll=q_roll, q_cutoff=q_cutoff, dim=dim)
+    noise = np.random.default_rng(seed).standard_normal(grid.shape)
+    heights = np.fft.irfftn(np.fft.rfftn(noise) * np.sqrt(psd), s=grid.shape)
+    if rms_height is not None:
+        current = statistics.rms_height(heights)
+    else:
+        current = statistics.rms_slope(heights, length=grid.lengths)
+    heights *= target / current
+
+    dims = ("x", "y")[:dim]
+    coords = {d: (d, c, attrs_for(d, length=length_unit)) for d, c in zip(dims, grid.coordinates())}
+    attrs = attrs_for("height", length=length_unit)
+    attrs.update(generator="contactlib.surfaces.self_affine", hurst=hurst, q_low=q_low, q_roll=q_roll,
+                 q_cutoff=q_cutoff, seed=seed, anisotropy=anisotropy, angle=angle, length=float(length),
+                 normalised_by="rms_height" if rms_height is not None else "rms_slope", target=float(target))
+    return xr.DataArray(heights, dims=dims, coords=coords, name="height", attrs=attrs)
+
+
+def _check_int(value, name: str, *, minimum: int) -> int:
+    if int(value) != value or value < minimum:
+        raise ValueError(f"{name} must be an integer >= {minimum}, got {value!r}")
+    return int(value)
