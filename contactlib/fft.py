@@ -136,4 +136,4 @@ def rfftn(field: np.ndarray) -> np.ndarray:
 
 def irfftn(spectrum: np.ndarray, shape: tuple[int, ...]) -> np.ndarray:
     """Inverse of :func:`rfftn` (normalised by 1/N)."""
-    return np.fft.irfftn(spectrum, s=shape)
+    return np.fft.irfftn(spectrum, s=shape, axes=tuple(range(len(shape))))

@@ -41,7 +41,7 @@ class Compliance:
             transfer = build(grid, self.E_star)
         else:
             build = elastic.halfspace_point_influence if kernel == "spectral" else elastic.halfspace_love_influence
-            transfer = np.fft.rfftn(build(grid, self.E_star)).real
+            transfer = fft.rfftn(build(grid, self.E_star)).real
         self.multiplier = fft.convolution_multiplier(transfer, self.work_shape)
         self._block = tuple(slice(0, n) for n in grid.shape)
 
@@ -65,7 +65,7 @@ class Compliance:
         """Displacement field on the work grid due to unit pressure on the element at the origin."""
         unit = np.zeros(self.work_shape)
         unit[(0,) * self.grid.dim] = 1.0
-        return np.fft.irfftn(np.fft.rfftn(unit) * self.multiplier * np.prod(self.work_shape), s=self.work_shape)
+        return fft.irfftn(fft.rfftn(unit) * self.multiplier * np.prod(self.work_shape), self.work_shape)
 
     def self_compliance(self) -> float:
         """Displacement of an element under its own unit pressure [length/pressure]."""

@@ -7,6 +7,7 @@ import math
 import numpy as np
 import xarray as xr
 
+from .. import fft
 from ..analysis import statistics
 from ..grid import Grid
 from ..labels import attrs_for
@@ -27,6 +28,7 @@ def self_affine(
     dim: int = 2,
     anisotropy: float = 1.0,
     angle: float = 0.0,
+    synthesis: str = "filtered-noise",
     length_unit: str = "m",
 ) -> xr.DataArray:
     """Gaussian self-affine surface, periodic on ``length``.
@@ -50,6 +52,10 @@ def self_affine(
         Ratio gamma in (0, 1] of the eigenvalues of the slope tensor (seed 2, eq. 27); 1 is isotropic.
     angle : float
         Principal (steepest) direction of the slope tensor [rad] from the x axis.
+    synthesis : {"filtered-noise", "random-phase"}
+        ``filtered-noise``: Gaussian white noise filtered by ``sqrt(C)`` (Gaussian amplitudes, the
+        PSD holds on average); ``random-phase``: every mode has exactly the amplitude ``sqrt(C)``
+        and a random phase (the PSD and slope tensor hold for each realisation).
 
     Returns
     -------
@@ -71,6 +77,8 @@ def self_affine(
         raise ValueError(f"{'rms_height' if rms_height is not None else 'rms_slope'} must be > 0, got {target!r}")
     if not (0 < anisotropy <= 1):
         raise ValueError(f"anisotropy must lie in (0, 1], got {anisotropy!r}")
+    if synthesis not in ("filtered-noise", "random-phase"):
+        raise ValueError(f"synthesis must be 'filtered-noise' or 'random-phase', got {synthesis!r}")
     if dim == 1 and (anisotropy != 1 or angle != 0):
         raise ValueError("anisotropy and angle need dim=2")
 
@@ -83,7 +91,11 @@ def self_affine(
         q = grid.wavenumber()
     psd = self_affine_psd(q, q0=q0, hurst=hurst, q_low=q_low, q_roll=q_roll, q_cutoff=q_cutoff, dim=dim)
     noise = np.random.default_rng(seed).standard_normal(grid.shape)
-    heights = np.fft.irfftn(np.fft.rfftn(noise) * np.sqrt(psd), s=grid.shape)
+    spectrum = fft.rfftn(noise)
+    if synthesis == "random-phase":  # unit modulus, phases of white noise (so Hermitian symmetry holds)
+        modulus = np.abs(spectrum)
+        spectrum = np.divide(spectrum, modulus, out=np.zeros_like(spectrum), where=modulus > 0)
+    heights = fft.irfftn(spectrum * np.sqrt(psd), grid.shape)
     if rms_height is not None:
         current = statistics.rms_height(heights)
     else:
@@ -94,7 +106,7 @@ def self_affine(
     coords = {d: (d, c, attrs_for(d, length=length_unit)) for d, c in zip(dims, grid.coordinates())}
     attrs = attrs_for("height", length=length_unit)
     attrs.update(generator="contactlib.surfaces.self_affine", hurst=hurst, q_low=q_low, q_roll=q_roll,
-                 q_cutoff=q_cutoff, seed=seed, anisotropy=anisotropy, angle=angle, length=float(length),
+                 q_cutoff=q_cutoff, seed=seed, anisotropy=anisotropy, angle=angle, length=float(length), synthesis=synthesis,
                  normalised_by="rms_height" if rms_height is not None else "rms_slope", target=float(target))
     return xr.DataArray(heights, dims=dims, coords=coords, name="height", attrs=attrs)
 

@@ -1,0 +1,58 @@
+"""Command line round trip: NetCDF in and out, same numbers as the Python API."""
+
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+import xarray as xr
+
+import contactlib
+from contactlib.cli import main
+
+
+def test_surface_then_solve_matches_api(tmp_path):
+    surf, out = tmp_path / "surf.nc", tmp_path / "out.nc"
+    assert main(["surface", "--n", "64", "--hurst", "0.7", "--q-roll", "2", "--q-cutoff", "16", "--rms-slope",
+                 "0.1", "--seed", "5", "-o", str(surf)]) == 0
+    assert main(["solve", str(surf), "--E", "2.0", "--nu", "0.3", "--mean-pressure", "0.01", "-o", str(out)]) == 0
+    api_surface = contactlib.surfaces.self_affine(64, hurst=0.7, q_roll=2, q_cutoff=16, rms_slope=0.1, seed=5)
+    api = contactlib.solve(api_surface, E=2.0, nu=0.3, mean_pressure=0.01)
+    with xr.open_dataset(surf) as s:
+        assert s.height.values.tobytes() == api_surface.values.tobytes()
+    with xr.open_dataset(out) as o:
+        for name in ("pressure", "gap", "displacement"):
+            np.testing.assert_array_equal(o[name].values, api[name].values)
+        for name in ("contact_area", "mean_pressure", "penetration", "iterations", "residual"):
+            assert float(o[name]) == float(api[name])
+            assert o[name].attrs["units"] and o[name].attrs["long_name"]
+
+
+def test_console_script_help_and_errors(tmp_path):
+    for args in (["--help"], ["surface", "--help"], ["solve", "--help"]):
+        res = subprocess.run([sys.executable, "-m", "contactlib.cli", *args], capture_output=True, text=True,
+                             timeout=60)
+        assert res.returncode == 0 and "usage" in res.stdout
+    surf = tmp_path / "s.nc"
+    main(["surface", "--n", "16", "--hurst", "0.7", "--q-roll", "1", "--q-cutoff", "4", "--rms-height", "1e-6",
+          "-o", str(surf)])
+    res = subprocess.run([sys.executable, "-m", "contactlib.cli", "solve", str(surf), "--E", "-3", "--nu", "0.3",
+                          "--mean-pressure", "1", "-o", str(tmp_path / "o.nc")], capture_output=True, text=True,
+                         timeout=60)
+    assert res.returncode == 2 and "E (Young's modulus)" in res.stderr
+    assert not (tmp_path / "o.nc").exists()
+
+
+def test_non_convergence_exit_status_keeps_partial_result(tmp_path):
+    surf, out = tmp_path / "s.nc", tmp_path / "o.nc"
+    main(["surface", "--n", "32", "--hurst", "0.7", "--q-roll", "1", "--q-cutoff", "8", "--rms-slope", "0.1",
+          "-o", str(surf)])
+    assert main(["solve", str(surf), "--E", "1", "--nu", "0.3", "--mean-pressure", "0.01", "--tol", "1e-14",
+                 "--max-iter", "2", "-o", str(out)]) == 3
+    with xr.open_dataset(out) as o:
+        assert o.attrs["converged"] == 0
+
+
+def test_exactly_one_load_on_the_command_line():
+    with pytest.raises(SystemExit):
+        main(["solve", "x.nc", "--E", "1", "--nu", "0.3", "--mean-pressure", "1", "--penetration", "1", "-o", "o"])

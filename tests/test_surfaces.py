@@ -1,0 +1,119 @@
+"""Surface generation and statistics."""
+
+import numpy as np
+import pytest
+
+import contactlib
+from contactlib import analysis
+
+
+@pytest.mark.parametrize("hurst", [0.3, 0.8])
+def test_fitted_psd_slope_recovers_hurst_2d(hurst):
+    h = contactlib.surfaces.self_affine(512, hurst=hurst, q_roll=4, q_cutoff=128, rms_height=1e-6, seed=5)
+    assert analysis.fit_hurst(h, q_min=8, q_max=128) == pytest.approx(hurst, abs=0.02)
+
+
+def test_fitted_psd_slope_recovers_hurst_1d():
+    h = contactlib.surfaces.self_affine(2**16, hurst=0.6, q_roll=4, q_cutoff=2**13, rms_height=1.0, seed=2, dim=1)
+    assert analysis.fit_hurst(h, q_min=8, q_max=2**13) == pytest.approx(0.6, abs=0.02)
+
+
+def test_rms_normalisation_exact():
+    h = contactlib.surfaces.self_affine(128, hurst=0.5, q_roll=2, q_cutoff=32, rms_height=3e-6, seed=1)
+    assert analysis.rms_height(h) == pytest.approx(3e-6, rel=1e-12)
+    s = contactlib.surfaces.self_affine(128, length=2e-3, hurst=0.5, q_roll=2, q_cutoff=32, rms_slope=0.2, seed=1)
+    assert analysis.rms_slope(s) == pytest.approx(0.2, rel=1e-12)
+    # the spectral slope agrees with a finite-difference slope for a well-resolved surface
+    s = contactlib.surfaces.self_affine(128, length=2e-3, hurst=0.5, q_roll=2, q_cutoff=6, rms_slope=0.2, seed=1)
+    fd = np.gradient(s.values, s.x.values[1] - s.x.values[0], axis=(0, 1))
+    assert np.sqrt(np.mean(fd[0] ** 2 + fd[1] ** 2)) == pytest.approx(0.2, rel=0.05)
+
+
+def test_psd_integrates_to_variance():
+    h = contactlib.surfaces.self_affine(256, length=1e-3, hurst=0.8, q_roll=2, q_cutoff=64, rms_height=1e-6, seed=9)
+    c = analysis.psd(h)
+    assert c.attrs["units"] == "m4"
+    # radial average: integral of C(q) 2 pi q dq ~ <h^2> (binning error only)
+    dq = 2 * np.pi / 1e-3
+    variance = float(np.sum(c.values * 2 * np.pi * c.wavenumber.values * dq))
+    assert variance == pytest.approx(1e-12, rel=0.05)
+
+
+def test_same_seed_same_bits_and_different_seed_differs():
+    kwargs = dict(hurst=0.8, q_roll=2, q_cutoff=32, rms_slope=0.1)
+    a = contactlib.surfaces.self_affine(128, seed=42, **kwargs)
+    b = contactlib.surfaces.self_affine(128, seed=42, **kwargs)
+    c = contactlib.surfaces.self_affine(128, seed=43, **kwargs)
+    assert a.values.tobytes() == b.values.tobytes()
+    assert not np.array_equal(a.values, c.values)
+
+
+@pytest.mark.parametrize("gamma,angle", [(0.3, 0.0), (0.5, np.pi / 3), (0.2, 2.0)])
+def test_anisotropy_recovered(gamma, angle):
+    h = contactlib.surfaces.self_affine(256, hurst=0.8, q_roll=2, q_cutoff=64, rms_slope=0.1, seed=4,
+                                        anisotropy=gamma, angle=angle, synthesis="random-phase")
+    tensor = analysis.anisotropy_tensor(h, 0, 128)
+    assert float(tensor.gamma) == pytest.approx(gamma, rel=0.05)
+    diff = (float(tensor.theta_d) - angle + np.pi / 2) % np.pi - np.pi / 2
+    assert abs(diff) < 0.05 * np.pi / 2
+    # mu2 is maximal along theta_d, and its max/min ratio matches gamma
+    assert float(tensor.mu2.min() / tensor.mu2.max()) == pytest.approx(float(tensor.gamma), rel=1e-3)
+
+
+def test_anisotropy_of_gaussian_surfaces_on_average():
+    """Filtered noise: each realisation scatters (few long-wavelength modes); the seed average holds."""
+    gammas = [float(analysis.anisotropy_tensor(contactlib.surfaces.self_affine(
+        256, hurst=0.8, q_roll=2, q_cutoff=64, rms_slope=0.1, seed=s, anisotropy=0.5, angle=1.0), 0, 128).gamma)
+        for s in range(8)]
+    assert np.mean(gammas) == pytest.approx(0.5, rel=0.05)
+
+
+def test_isotropic_surface_has_gamma_near_one():
+    h = contactlib.surfaces.self_affine(256, hurst=0.8, q_roll=2, q_cutoff=64, rms_slope=0.1, seed=4)
+    assert float(analysis.anisotropy_tensor(h, 0, 128).gamma) > 0.85
+
+
+def test_anisotropy_tensor_matches_slope_products():
+    h = contactlib.surfaces.self_affine(128, hurst=0.8, q_roll=2, q_cutoff=32, rms_slope=0.1, seed=4,
+                                        anisotropy=0.4, angle=0.5)
+    m = analysis.anisotropy_tensor(h, 0, 64).M.values
+    gx, gy = (np.fft.ifftn(1j * q * np.fft.fftn(h.values)).real for q in np.meshgrid(
+        2 * np.pi * np.fft.fftfreq(128, 1 / 128), 2 * np.pi * np.fft.fftfreq(128, 1 / 128), indexing="ij"))
+    np.testing.assert_allclose(m, [[np.mean(gx * gx), np.mean(gx * gy)], [np.mean(gx * gy), np.mean(gy * gy)]],
+                               rtol=1e-10)
+
+
+def test_wavy_and_spheres():
+    w = contactlib.surfaces.wavy(64, amplitude=2.0, dim=2)
+    assert float(w.max()) == pytest.approx(2.0) and w.dims == ("x", "y")
+    lattice = contactlib.surfaces.spheres(64, radius=0.1, lattice=4, summit_height=0.01)
+    assert float(lattice.max()) <= 0.01 + 1e-15
+    labels, areas = analysis.contact_clusters(lattice.values > 0)
+    assert len(areas) == 16 and np.ptp(areas) == 0
+    rand = contactlib.surfaces.spheres(64, radius=0.05, count=10, height_std=0.002, seed=3)
+    rand2 = contactlib.surfaces.spheres(64, radius=0.05, count=10, height_std=0.002, seed=3)
+    assert rand.values.tobytes() == rand2.values.tobytes()
+
+
+def test_clusters_merge_across_periodic_edges():
+    mask = np.zeros((8, 8))
+    mask[0, 3] = mask[7, 3] = 1  # one patch split by the x edge
+    mask[4, 0] = mask[4, 7] = 1  # one patch split by the y edge
+    _, areas = analysis.contact_clusters(mask)
+    assert sorted(areas) == [2.0, 2.0]
+    _, areas_np = analysis.contact_clusters(mask, periodic=False)
+    assert len(areas_np) == 4
+    assert analysis.contact_area_fraction(mask) == 4 / 64
+
+
+@pytest.mark.parametrize("kwargs,name", [
+    (dict(hurst=1.5), "hurst"),
+    (dict(q_cutoff=100), "q_cutoff"),
+    (dict(rms_height=1.0), "exactly one"),
+    (dict(anisotropy=0.0), "anisotropy"),
+])
+def test_bad_surface_parameters(kwargs, name):
+    base = dict(hurst=0.8, q_roll=2, q_cutoff=16, rms_slope=0.1)
+    base.update(kwargs)
+    with pytest.raises(ValueError, match=name):
+        contactlib.surfaces.self_affine(64, **base)
