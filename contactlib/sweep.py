@@ -1,0 +1,335 @@
+"""Fan a pure point function out over a parameter grid and combine the points into one labelled Dataset.
+
+The library knows nothing of Snakemake: :func:`run_grid` takes a function, a grid of parameter
+values and (optionally) a ``distributed.Client``; every point is one task. A point that fails with
+:class:`contactlib.ConvergenceError` or ``ValueError`` is recorded with a ``status`` code, its
+``residual`` and NaN values; the rest of the sweep goes on. Finished points are checkpointed one
+small file each (temporary name, then ``os.replace``), so an interrupted sweep resumes where it
+stopped and gives the same Dataset as an uninterrupted one (``wall_time`` aside).
+
+Every task imports the parent's FFTW wisdom and runs single-threaded FFTs, so a point computes the
+same bits whichever worker (or the parent itself) runs it.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import datetime
+import hashlib
+import json
+import math
+import os
+import pickle
+import subprocess
+import sys
+import time
+from collections.abc import Callable, Iterable, Mapping
+from pathlib import Path
+
+import numpy as np
+import xarray as xr
+
+from . import fft
+from ._version import __version__
+from .contact import ConvergenceError
+from .labels import VARIABLES
+
+STATUS_OK, STATUS_NOT_CONVERGED, STATUS_BAD_INPUT = 0, 1, 2
+
+SWEEP_VARIABLES: dict[str, dict[str, str]] = {
+    "status": {"units": "1", "long_name": "point status: 0 ok, 1 not converged, 2 bad input"},
+    "wall_time": {"units": "s", "long_name": "wall-clock time of the point"},
+    "residual": VARIABLES["residual"],
+    "seed": {"units": "1", "long_name": "random seed of the surface"},
+    "n": {"units": "1", "long_name": "grid points per side"},
+}
+
+_worker_wisdom: dict[str, str] = {}
+
+
+def point_key(params: Mapping, fingerprint: str = "") -> str:
+    """Stable hex digest of one point's parameters (and the study ``fingerprint``)."""
+    text = json.dumps({"fingerprint": fingerprint, "params": {k: _plain(v) for k, v in params.items()}},
+                      sort_keys=True)
+    return hashlib.sha256(text.encode()).hexdigest()[:24]
+
+
+def _plain(v):
+    return v.item() if isinstance(v, np.generic) else v
+
+
+def _prepare_worker(wisdom, threads: int) -> None:
+    """Single-threaded FFTs and the parent's plans, once per process."""
+    fft.set_fft_options(threads=threads)
+    if wisdom is None:
+        return
+    digest = hashlib.sha256(b"".join(wisdom)).hexdigest()
+    if _worker_wisdom.get("digest") != digest:
+        fft._load_wisdom_once()  # the on-disk cache first, so the parent's plans are the last word
+        fft.import_wisdom(wisdom)
+        _worker_wisdom["digest"] = digest
+
+
+def evaluate_point(point_fn: Callable, params: dict, wisdom=None, threads: int = 1) -> dict:
+    """Run one point, turning the expected failures into a status code (runs on a worker)."""
+    _prepare_worker(wisdom, threads)
+    start = time.perf_counter()
+    values, message = {}, ""
+    try:
+        values = dict(point_fn(**params))
+        status = STATUS_OK
+        residual = float(values.pop("residual", math.nan))
+    except ConvergenceError as err:
+        status, residual, message = STATUS_NOT_CONVERGED, float(err.residual), str(err)
+    except ValueError as err:
+        status, residual, message = STATUS_BAD_INPUT, math.nan, str(err)
+    return {"params": dict(params), "values": values, "status": status, "residual": residual,
+            "wall_time": time.perf_counter() - start, "message": message}
+
+
+def _write_atomic(path: Path, write: Callable[[Path], None]) -> None:
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    tmp = path.with_name(f".{path.name}.{os.getpid()}.tmp")
+    try:
+        write(tmp)
+        os.replace(tmp, path)
+    finally:
+        with contextlib.suppress(FileNotFoundError):
+            tmp.unlink()
+
+
+def _save_checkpoint(directory: Path, key: str, result: dict) -> None:
+    def write(tmp):
+        with open(tmp, "wb") as f:
+            pickle.dump(result, f, protocol=pickle.HIGHEST_PROTOCOL)
+    _write_atomic(directory / f"{key}.pkl", write)
+
+
+def _load_checkpoint(directory: Path, key: str):
+    path = directory / f"{key}.pkl"
+    try:
+        with open(path, "rb") as f:
+            return pickle.load(f)
+    except (OSError, EOFError, pickle.UnpicklingError):
+        return None
+
+
+def grid_points(grid: Mapping[str, Iterable]) -> tuple[dict[str, np.ndarray], list[dict]]:
+    """Sorted unique coordinate values per swept name, and every point of their product (C order)."""
+    coords = {}
+    for name, values in grid.items():
+        values = np.unique(np.asarray(list(values)))
+        if values.size == 0:
+            raise ValueError(f"grid: {name!r} has no values")
+        coords[name] = values
+    names = list(coords)
+    points = [dict(zip(names, (_plain(v) for v in combo)))
+              for combo in np.array(np.meshgrid(*coords.values(), indexing="ij"), dtype=object)
+              .reshape(len(names), -1).T]
+    return coords, points
+
+
+class Progress:
+    """Per-point log line with elapsed time and ETA, written to ``stream`` (or passed to a callable)."""
+
+    def __init__(self, total: int, sink=True):
+        self.total, self.done, self.start = total, 0, time.perf_counter()
+        self.sink = sink
+
+    def __call__(self, result: dict, cached: bool = False) -> None:
+        self.done += 1
+        elapsed = time.perf_counter() - self.start
+        eta = elapsed / self.done * (self.total - self.done)
+        params = " ".join(f"{k}={v:g}" if isinstance(v, float) else f"{k}={v}" for k, v in result["params"].items())
+        state = ("cached" if cached else ("ok", "not converged", "bad input")[result["status"]])
+        line = (f"[{self.done}/{self.total}] {params} {state} {result['wall_time']:.2f} s | "
+                f"elapsed {elapsed:.1f} s, ETA {eta:.1f} s")
+        if callable(self.sink):
+            self.sink(line)
+        elif self.sink:
+            print(line, file=sys.stderr, flush=True)
+
+
+def run_grid(
+    point_fn: Callable[..., Mapping],
+    grid: Mapping[str, Iterable],
+    *,
+    client=None,
+    checkpoint_dir: str | os.PathLike | None = None,
+    fingerprint: str = "",
+    fft_shapes: Iterable[tuple[int, ...]] = (),
+    labels: Mapping[str, Mapping[str, str]] | None = None,
+    attrs: Mapping | None = None,
+    progress: bool | Callable[[str], None] = True,
+) -> xr.Dataset:
+    """Evaluate ``point_fn(**point)`` at every point of ``grid`` and combine into one Dataset.
+
+    Parameters
+    ----------
+    point_fn : callable
+        Pure function of the swept parameters (bind constants with ``functools.partial``), returning
+        a mapping of scalars and, optionally, small ``xarray.DataArray`` fields. Must be importable
+        (or picklable) where the tasks run.
+    grid : mapping name -> values
+        Swept parameters; each becomes a sorted 1-D coordinate and a dimension, in this order.
+    client : distributed.Client, optional
+        Run one task per point on this client; ``None`` runs the points here, one after another.
+    checkpoint_dir : path, optional
+        One file per finished point; points found there are loaded, not recomputed.
+    fingerprint : str
+        Anything that changes what a point computes (the study's config); part of each point's key.
+    fft_shapes : iterable of shapes
+        FFT shapes the points use: planned here once, and the wisdom shipped with every task.
+    labels : mapping name -> {"units", "long_name"}
+        Labels of the point's outputs and swept names; together with :data:`SWEEP_VARIABLES`
+        they must cover every variable and coordinate, or ``KeyError`` is raised.
+    attrs : mapping
+        Global attributes (``title``, ``source``, ``config``, ...); provenance is added.
+    progress : bool or callable
+        Per-point log line with ETA on stderr (``True``), to a callable, or none.
+
+    Returns
+    -------
+    xarray.Dataset with dims = the swept names (+ the fields' own dims), ``status``, ``residual``,
+    ``wall_time`` and the point outputs.
+
+    Examples
+    --------
+    >>> import contactlib.sweep as sw
+    >>> ds = sw.run_grid(lambda a, b: {"c": a * b}, {"a": [1.0, 2.0], "b": [3.0]}, progress=False,
+    ...                  labels={"a": {"units": "1", "long_name": "a"}, "b": {"units": "1", "long_name": "b"},
+    ...                          "c": {"units": "1", "long_name": "a b"}})
+    >>> ds.c.values.tolist()
+    [[3.0], [6.0]]
+    """
+    coords, points = grid_points(grid)
+    keys = [point_key(p, fingerprint) for p in points]
+    if len(set(keys)) != len(keys):
+        raise ValueError("grid: duplicate points")
+    checkpoint_dir = None if checkpoint_dir is None else Path(checkpoint_dir)
+    report = Progress(len(points), progress)
+    results: dict[str, dict] = {}
+    if checkpoint_dir is not None:
+        for key in keys:
+            cached = _load_checkpoint(checkpoint_dir, key)
+            if cached is not None:
+                results[key] = cached
+                report(cached, cached=True)
+    todo = [(k, p) for k, p in zip(keys, points) if k not in results]
+    threads = fft.fft_options()["threads"]
+    for shape in fft_shapes:
+        fft.get_fft(tuple(shape))
+    wisdom = fft.export_wisdom()
+
+    def finish(key, result):
+        if checkpoint_dir is not None:
+            _save_checkpoint(checkpoint_dir, key, result)
+        results[key] = result
+        report(result)
+
+    if client is None:
+        for key, params in todo:
+            finish(key, evaluate_point(point_fn, params, wisdom, threads))
+    elif todo:
+        from distributed import as_completed
+
+        futures = {client.submit(evaluate_point, point_fn, params, wisdom, 1, key=f"contactlib-point-{key}",
+                                 pure=False): key for key, params in todo}
+        for future in as_completed(futures):
+            finish(futures[future], future.result())
+            future.release()
+    return combine(coords, [results[k] for k in keys], labels=labels, attrs=attrs)
+
+
+def combine(coords: Mapping[str, np.ndarray], results: list[dict], *, labels=None, attrs=None) -> xr.Dataset:
+    """Stack point results (in C order of ``coords``) into arrays; NaN where a point failed."""
+    table = {**SWEEP_VARIABLES, **(labels or {})}
+    dims = tuple(coords)
+    shape = tuple(len(v) for v in coords.values())
+    templates: dict[str, object] = {}
+    for r in results:
+        for name, value in r["values"].items():
+            templates.setdefault(name, value)
+    data = {}
+    for name, template in templates.items():
+        if isinstance(template, xr.DataArray):
+            blank = xr.full_like(template, np.nan, dtype=float)
+            stacked = xr.concat([r["values"].get(name, blank).astype(float) for r in results], dim="_point")
+            values = stacked.values.reshape(shape + template.shape)
+            field_coords = {d: template[d] for d in template.dims if d in template.coords}
+            data[name] = xr.DataArray(values, dims=dims + template.dims, coords=field_coords)
+        else:
+            values = np.array([float(r["values"].get(name, np.nan)) for r in results]).reshape(shape)
+            data[name] = xr.DataArray(values, dims=dims)
+    data["residual"] = xr.DataArray(np.array([r["residual"] for r in results], dtype=float).reshape(shape), dims=dims)
+    data["status"] = xr.DataArray(np.array([r["status"] for r in results], dtype=np.int8).reshape(shape), dims=dims)
+    data["wall_time"] = xr.DataArray(np.array([r["wall_time"] for r in results]).reshape(shape), dims=dims)
+    ds = xr.Dataset(data, coords={name: (name, values) for name, values in coords.items()})
+    missing = sorted(n for n in list(ds.data_vars) + list(ds.coords) if n not in table and not ds[n].attrs.get("units"))
+    if missing:
+        raise KeyError(f"no units/long_name declared for {missing}: add them to labels=")
+    for name in list(ds.data_vars) + list(ds.coords):
+        if name in table:
+            ds[name].attrs.update({"units": table[name]["units"], "long_name": table[name]["long_name"]})
+    ds["status"].attrs.update({"flag_values": np.array([0, 1, 2], dtype=np.int8),
+                               "flag_meanings": "ok not_converged bad_input"})
+    ds.attrs.update(provenance(attrs or {}))
+    return ds
+
+
+def git_revision(path: str | os.PathLike | None = None) -> str:
+    """``git describe --always --dirty`` of the source tree, or ``"unknown"``."""
+    where = Path(path) if path else Path(__file__).resolve().parent
+    try:
+        out = subprocess.run(["git", "describe", "--always", "--dirty", "--abbrev=40"], cwd=where,
+                             capture_output=True, text=True, timeout=10, check=True)
+        return out.stdout.strip()
+    except (OSError, subprocess.SubprocessError):
+        return "unknown"
+
+
+def provenance(attrs: Mapping) -> dict:
+    """Global CF attributes: the caller's plus version, git revision, creation time and history."""
+    now = datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="seconds")
+    out = {"title": "contactlib parameter sweep", "source": f"contactlib {__version__}", "Conventions": "CF-1.10"}
+    out.update({k: (json.dumps(v, sort_keys=True) if isinstance(v, (dict, list)) else v) for k, v in attrs.items()})
+    out.update({"contactlib_version": __version__, "git_revision": git_revision(), "date_created": now,
+                "history": f"{now} created by contactlib.sweep.run_grid"})
+    return out
+
+
+def write_netcdf(ds: xr.Dataset, path: str | os.PathLike, *, sweep_dims: Iterable[str] = ()) -> Path:
+    """Write ``ds`` to ``path`` atomically (temporary name, then rename); fields compressed and
+    chunked one point per chunk."""
+    sweep_dims = set(sweep_dims)
+    encoding = {}
+    for name, var in ds.data_vars.items():
+        if var.ndim > 0 and any(d not in sweep_dims for d in var.dims) and sweep_dims:
+            chunks = tuple(1 if d in sweep_dims else var.sizes[d] for d in var.dims)
+            encoding[name] = {"zlib": True, "complevel": 4, "chunksizes": chunks}
+    path = Path(path)
+    _write_atomic(path, lambda tmp: ds.to_netcdf(tmp, encoding=encoding, engine="netcdf4"))
+    return path
+
+
+@contextlib.contextmanager
+def open_client(*, scheduler_address: str | None = None, n_workers: int = 2, threads_per_worker: int = 1,
+                log: Callable[[str], None] | None = None):
+    """A ``distributed.Client`` on an existing scheduler, or on a new ``LocalCluster`` of processes.
+
+    The dashboard address is logged (it is served only where ``bokeh`` is installed).
+    """
+    from distributed import Client, LocalCluster
+
+    log = log or (lambda line: print(line, file=sys.stderr, flush=True))
+    if scheduler_address:
+        with Client(scheduler_address, timeout="60s") as client:
+            log(f"dask: scheduler {scheduler_address}, dashboard {client.dashboard_link}")
+            yield client
+        return
+    with LocalCluster(n_workers=n_workers, threads_per_worker=threads_per_worker, processes=True,
+                      dashboard_address=":0") as cluster, Client(cluster) as client:
+        log(f"dask: LocalCluster {n_workers} workers x {threads_per_worker} threads, "
+            f"dashboard {client.dashboard_link}")
+        yield client
