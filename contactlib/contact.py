@@ -180,7 +180,7 @@ def solve(
             raise ValueError(f"initial_pressure has shape {warm.shape}, heights {values.shape}")
         state = solve_polonsky_keer(
             operator, values, mean_pressure=mean_pressure, penetration=penetration, tol=tol,
-            max_iter=int(max_iter), initial_pressure=warm, self_compliance=operator.self_compliance(),
+            max_iter=int(max_iter), initial_pressure=warm,
         )
     else:
         state = solve_active_set(operator, values, mean_pressure=mean_pressure, penetration=penetration,

@@ -45,20 +45,28 @@ class Compliance:
         self.multiplier = fft.convolution_multiplier(transfer, self.work_shape)
         self._block = tuple(slice(0, n) for n in grid.shape)
 
-    def __call__(self, pressure: np.ndarray, out: np.ndarray | None = None) -> np.ndarray:
-        """Displacement [length] due to ``pressure`` [pressure]; writes into ``out`` if given."""
+    def load(self) -> np.ndarray:
+        """Writable view where the next input pressure goes (padding already zeroed)."""
         plan = fft.get_fft(self.work_shape)
-        if self.periodic:
-            plan.real[...] = pressure
-        else:
+        if not self.periodic:
             plan.real.fill(0.0)
-            plan.real[self._block] = pressure
+        return plan.real[self._block]
+
+    def convolve(self) -> np.ndarray:
+        """Convolve what :meth:`load` received; returns a view of the displacement (valid until
+        the next call on this shape in this thread)."""
+        plan = fft.get_fft(self.work_shape)
         spectrum = plan.forward()
         spectrum *= self.multiplier
-        real = plan.inverse()
+        return plan.inverse()[self._block]
+
+    def __call__(self, pressure: np.ndarray, out: np.ndarray | None = None) -> np.ndarray:
+        """Displacement [length] due to ``pressure`` [pressure]; writes into ``out`` if given."""
+        self.load()[...] = pressure
+        result = self.convolve()
         if out is None:
-            return real[self._block].copy()
-        out[...] = real[self._block]
+            return result.copy()
+        out[...] = result
         return out
 
     def response(self) -> np.ndarray:
@@ -68,8 +76,13 @@ class Compliance:
         return fft.irfftn(fft.rfftn(unit) * self.multiplier * np.prod(self.work_shape), self.work_shape)
 
     def self_compliance(self) -> float:
-        """Displacement of an element under its own unit pressure [length/pressure]."""
-        return float(self.response()[(0,) * self.grid.dim])
+        """Displacement of an element under its own unit pressure [length/pressure]:
+        the inverse transform at the origin, i.e. the Hermitian-weighted sum of the multiplier."""
+        weight = np.full(self.multiplier.shape, 2.0)
+        weight[..., 0] = 1.0
+        if self.work_shape[-1] % 2 == 0:
+            weight[..., -1] = 1.0
+        return float(np.sum(weight * self.multiplier))
 
     def matrix(self, flat_indices: np.ndarray) -> np.ndarray:
         """Dense influence matrix restricted to the given (flattened) elements: for small grids."""

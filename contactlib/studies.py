@@ -7,14 +7,18 @@ name to its point function, the FFT shapes it plans, and the labels of its outpu
 
 from __future__ import annotations
 
+import inspect
+import itertools
 import math
 
 import numpy as np
+import xarray as xr
 
 from . import analysis, surfaces
 from .contact import solve
 from .materials import contact_modulus
 from .reference import hertz, westergaard
+from .sweep import SWEEP_VARIABLES
 
 PERSSON_KAPPA = math.sqrt(8 / math.pi)
 """Persson's small-load proportionality coefficient sqrt(8/pi) of A/A0 against p/(E* rms_slope)."""
@@ -142,3 +146,32 @@ STUDIES = {
     "area_load": {"point": area_load_point, "fft_shapes": lambda grid, c: [(n, n) for n in grid["n"]]},
     "anisotropy": {"point": anisotropy_point, "fft_shapes": lambda grid, c: [(c["n"], c["n"])]},
 }
+STUDIES["area_load"]["surface_keys"] = ("hurst", "seed")
+STUDIES["anisotropy"]["surface_keys"] = ("anisotropy", "seed")
+
+
+def study_surfaces(name: str, constants: dict, grid: dict) -> xr.Dataset:
+    """The seeded surfaces of a study (at its smallest resolution) as one labelled Dataset.
+
+    Dims are the study's surface parameters (e.g. ``hurst``, ``seed``) then ``x``, ``y``; the
+    points regenerate the same surfaces bit for bit from these parameters.
+    """
+    keys = STUDIES[name]["surface_keys"]
+    n = min(grid["n"]) if "n" in grid else constants["n"]
+    accepted = set(inspect.signature(rough_surface).parameters)
+    fixed = {k: v for k, v in constants.items() if k in accepted and k not in keys}
+    values = [sorted(grid[k]) for k in keys]
+    rows = []
+    for combo in itertools.product(*values):
+        rows.append(rough_surface(**{**fixed, "n": n, **dict(zip(keys, combo))}))
+    first = rows[0]
+    stacked = np.stack([r.values for r in rows]).reshape(tuple(len(v) for v in values) + first.shape)
+    table = {**SWEEP_VARIABLES, **STUDY_VARIABLES}
+    coords = {k: (k, np.asarray(v), dict(table[k])) for k, v in zip(keys, values)}
+    coords.update({d: first[d] for d in first.dims})
+    height = xr.DataArray(stacked, dims=keys + first.dims, coords=coords,
+                          attrs={"units": "m", "long_name": "rigid surface height"})
+    ds = xr.Dataset({"height": height})
+    ds.attrs.update({k: v for k, v in fixed.items()})
+    ds.attrs["n"] = n
+    return ds

@@ -5,26 +5,21 @@ current contact set, with projection onto ``p >= 0`` and re-entry of interpenetr
 (which restarts the conjugacy). Load control fixes ``mean(p)`` and finds the rigid approach as
 the mean gap offset over the contact set; displacement control fixes the approach.
 
-Two convolutions per iteration (``K p`` and ``K t``). The loop works in place on preallocated
-arrays and reduces with ``einsum`` (no BLAS threads competing with FFTW, no boolean fancy
-indexing).
+Two convolutions per iteration (``K p`` and ``K t``), written and read in place in the FFT
+buffers; everything else is five fused sweeps (:mod:`._fused`). The centring of ``K t`` over
+the contact set enters only through ``sum_c (r - r_c) t = sum r t - r_c sum t``.
 """
 
 from __future__ import annotations
 
-from typing import Callable
-
 import numpy as np
 
-from .state import ContactState, contact_residual, height_scale
-
-
-def _dot(a: np.ndarray, b: np.ndarray) -> float:
-    return float(np.einsum("i,i->", a.ravel(), b.ravel()))
+from . import _fused as fz
+from .state import ContactState, height_scale
 
 
 def solve_polonsky_keer(
-    apply_compliance: Callable[..., np.ndarray],
+    operator,
     heights: np.ndarray,
     *,
     mean_pressure: float | None = None,
@@ -32,98 +27,91 @@ def solve_polonsky_keer(
     tol: float = 1e-8,
     max_iter: int = 10_000,
     initial_pressure: np.ndarray | None = None,
-    self_compliance: float = 1.0,
 ) -> ContactState:
     """Solve for the contact pressure under load or displacement control.
 
     Parameters
     ----------
-    apply_compliance : callable
-        ``apply_compliance(pressure, out=...) -> displacement``, a linear symmetric operator.
+    operator : Compliance
+        Linear symmetric compliance with ``load() -> input view`` and ``convolve() -> output view``
+        (see :class:`contactlib.operators.Compliance`).
     heights : ndarray
         Rigid surface heights [length]; higher points touch first.
     mean_pressure, penetration : float
         Exactly one: the mean pressure over the window [pressure], or the rigid approach from
         first contact of the highest point [length].
     tol : float
-        Target of :func:`contact_residual`.
+        Target of :func:`~contactlib.solvers.contact_residual`, evaluated every iteration.
     initial_pressure : ndarray, optional
         Warm start (e.g. the previous point of a load path).
-    self_compliance : float
-        Displacement per unit pressure of one element; scales the displacement-control start.
     """
     load_control = mean_pressure is not None
-    hp = heights - heights.max()  # <= 0; gap = u - hp - penetration
+    hp = fz.as2d(heights - heights.max())  # <= 0; gap = u - hp - penetration
     scale = height_scale(heights)
     n = heights.size
+    self_compliance = operator.self_compliance()
 
     if load_control:
-        p = np.full(heights.shape, float(mean_pressure)) if initial_pressure is None else initial_pressure.copy()
-        p *= mean_pressure / p.mean() if p.mean() > 0 else 1.0
         if mean_pressure == 0:
-            return _zero_state(heights, hp, penetration=0.0, scale=scale)
+            return _zero_state(heights, penetration=0.0)
+        p = np.full(hp.shape, float(mean_pressure)) if initial_pressure is None else \
+            fz.as2d(np.maximum(initial_pressure, 0.0)).copy()
+        if p.sum() <= 0:
+            p[...] = mean_pressure
     else:
         interference = np.maximum(hp + penetration, 0.0)
         if not interference.any():
-            return _zero_state(heights, hp, penetration=float(penetration), scale=scale)
-        p = interference / self_compliance if initial_pressure is None else initial_pressure.copy()
+            return _zero_state(heights, penetration=float(penetration))
+        p = interference / self_compliance if initial_pressure is None else \
+            fz.as2d(np.maximum(initial_pressure, 0.0)).copy()
+    factor = mean_pressure * n / p.sum() if load_control else 1.0
 
-    u = np.empty_like(p)
     g = np.empty_like(p)
     t = np.zeros_like(p)
-    r = np.empty_like(p)
-    mask = np.empty_like(p)
     G_old, restart = 1.0, True
     residual, approach = np.inf, float(penetration or 0.0)
     it = 0
     for it in range(max_iter + 1):
-        apply_compliance(p, out=u)
-        np.subtract(u, hp, out=g)
-        np.greater(p, 0.0, out=mask, casting="unsafe")
-        n_contact = mask.sum()
+        fz.scale_and_load(p, factor, fz.as2d(operator.load()))
+        u = fz.as2d(operator.convolve())
+        n_contact, g_sum = fz.gap_and_contact_mean(u, hp, p, g)
         if load_control:
-            approach = _dot(g, mask) / n_contact
-        g -= approach
-        residual = contact_residual(p, g, scale)
+            approach = g_sum / n_contact
+        comp, pen, G, psum = fz.shift_and_measure(g, p, approach)
+        residual = (comp + psum * pen / n) / (psum * scale) if psum > 0 else pen / (n * scale)
         if residual <= tol or it == max_iter:
             break
-        G = _dot(g * g, mask)
         beta = 0.0 if restart else G / G_old
-        t *= beta
-        t += g
-        t *= mask
         G_old = G
-        apply_compliance(t, out=r)
+        t_sum, gt = fz.conjugate_direction(g, p, beta, t, fz.as2d(operator.load()))
+        r = fz.as2d(operator.convolve())
+        r_sum, rt = fz.contact_sums(r, t, p)
         if load_control:
-            r -= _dot(r, mask) / n_contact
-        denom = _dot(r, t)
-        tau = _dot(g, t) / denom if denom > 0 else 1.0 / self_compliance
-        p -= tau * t
-        np.maximum(p, 0.0, out=p)
-        # interpenetrating points without pressure re-enter the contact set
-        overlap = (p == 0.0) & (g < 0.0)
-        restart = bool(overlap.any())
-        if restart:
-            p -= tau * g * overlap
+            rt -= r_sum / n_contact * t_sum
+        tau = gt / rt if rt > 0 else 1.0 / self_compliance
+        psum, n_overlap = fz.step_project_reenter(p, t, g, tau)
+        restart = n_overlap > 0
         if load_control:
-            total = p.sum()
-            if total <= 0:  # lost every point: restart from the highest point
+            if psum <= 0:  # lost every point: restart from the highest point
                 p[...] = np.where(hp == 0.0, 1.0, 0.0)
-                total = p.sum()
-            p *= mean_pressure * n / total
+                psum = p.sum()
+            factor = mean_pressure * n / psum
+        else:
+            factor = 1.0
 
+    displacement = np.array(u, copy=True).reshape(heights.shape)  # K p of the returned p
     return ContactState(
-        pressure=p, gap=g, displacement=u, penetration=float(approach),
-        mean_pressure=float(p.mean()), iterations=it, residual=float(residual),
+        pressure=p.reshape(heights.shape), gap=g.reshape(heights.shape), displacement=displacement,
+        penetration=float(approach), mean_pressure=float(p.mean()), iterations=it, residual=float(residual),
         converged=bool(residual <= tol), solver="polonsky-keer",
     )
 
 
-def _zero_state(heights: np.ndarray, hp: np.ndarray, *, penetration: float, scale: float) -> ContactState:
+def _zero_state(heights: np.ndarray, *, penetration: float) -> ContactState:
     p = np.zeros_like(heights)
-    g = -hp - penetration
+    g = heights.max() - heights - penetration
+    pen = float(np.mean(np.maximum(-g, 0.0)) / height_scale(heights))
     return ContactState(
-        pressure=p, gap=g, displacement=np.zeros_like(heights), penetration=penetration,
-        mean_pressure=0.0, iterations=0, residual=contact_residual(p, g, scale), converged=True,
-        solver="polonsky-keer",
+        pressure=p, gap=g, displacement=np.zeros_like(heights), penetration=penetration, mean_pressure=0.0,
+        iterations=0, residual=pen, converged=True, solver="polonsky-keer",
     )
