@@ -194,12 +194,22 @@ def solve(
         "converged": int(state.converged), "wall_time": wall, "contactlib_version": __version__,
         "window_lengths": list(grid.lengths),
     })
+    if not periodic and _touches_edge(state.pressure):
+        raise ValueError(
+            "periodic=False: the contact reaches the edge of the window, so the surface outside it would "
+            "carry load too; enlarge the window (or use periodic=True for a periodic surface)"
+        )
     if not state.converged:
         raise ConvergenceError(
             f"{state.solver} did not converge in {state.iterations} iterations: residual "
             f"{state.residual:.3e} > tol {tol:.1e}", residual=state.residual, dataset=ds,
         )
     return ds
+
+
+def _touches_edge(pressure: np.ndarray) -> bool:
+    edges = [np.take(pressure, i, axis=a) for a in range(pressure.ndim) for i in (0, -1)]
+    return any(np.any(e > 0) for e in edges)
 
 
 def to_dataset(state: ContactState, *, dims, coords, length_unit="m", pressure_unit="Pa") -> xr.Dataset:

@@ -1,0 +1,110 @@
+"""Scenes chosen to break solvers. Each asserts convergence, physical sanity and a reference.
+
+To add a case: append a :class:`Scene` to ``SCENES`` (a surface factory, the solve keywords and,
+optionally, a check of the result).
+"""
+
+from dataclasses import dataclass, field
+from typing import Callable
+
+import numpy as np
+import pytest
+
+import contactlib
+from contactlib.reference import westergaard
+
+E, NU = 1.0, 0.5
+E_STAR = E / (1 - NU**2)
+
+
+def rough(n, hurst=0.8, dim=2, q_roll=2, q_cutoff=None, seed=0, **kw):
+    return lambda: contactlib.surfaces.self_affine(n, hurst=hurst, q_roll=q_roll, q_cutoff=q_cutoff or n // 4,
+                                                   rms_slope=0.1, seed=seed, dim=dim, **kw)
+
+
+def spike():
+    h = contactlib.surfaces.self_affine(128, hurst=0.8, q_roll=2, q_cutoff=32, rms_height=1.0, seed=2).copy()
+    h[40, 70] = 100.0  # one spike a hundred rms heights tall
+    return h
+
+
+def check_single_point(out):
+    assert 0 < int((out.pressure > 0).sum()) <= 3
+
+
+def check_spike_carries_load_alone(out):
+    assert int((out.pressure > 0).sum()) == 1 and float(out.pressure[40, 70]) > 0
+
+
+def check_fraction(lo, hi):
+    def check(out):
+        assert lo <= float(out.contact_area) <= hi
+    return check
+
+
+def check_westergaard_threshold(out):
+    exact = westergaard.full_contact_field(out.x.values, mean_pressure=float(out.mean_pressure), amplitude=0.01,
+                                           wavelength=1.0, E_star=E_STAR)
+    np.testing.assert_allclose(out.pressure.values, exact, atol=1e-4 * float(out.mean_pressure))
+
+
+@dataclass
+class Scene:
+    name: str
+    surface: Callable
+    solve: dict
+    check: Callable | None = None
+    extra: dict = field(default_factory=dict)
+
+
+P_STAR = westergaard.full_contact_pressure(amplitude=0.01, wavelength=1.0, E_star=E_STAR)
+
+SCENES = [
+    Scene("single touching point", rough(256), {"mean_pressure": 1e-9}, check_single_point),
+    Scene("near full contact", rough(128), {"mean_pressure": 0.5}, check_fraction(0.97, 1.0)),
+    Scene("Hurst 0.3", rough(256, hurst=0.3), {"mean_pressure": 0.01}, check_fraction(0.02, 0.5)),
+    Scene("Hurst 0.95", rough(256, hurst=0.95), {"mean_pressure": 0.01}, check_fraction(0.02, 0.5)),
+    Scene("1000 scales in 1D at 65536 points", rough(65536, dim=1, q_roll=1, q_cutoff=1000, hurst=0.8),
+          {"mean_pressure": 0.01}, check_fraction(0.01, 0.5)),
+    Scene("one tall spike", spike, {"mean_pressure": 1e-6}, check_spike_carries_load_alone),
+    Scene("load exactly at full contact", lambda: contactlib.surfaces.wavy(512, amplitude=0.01),
+          {"mean_pressure": P_STAR, "tol": 1e-10}, check_westergaard_threshold),
+    Scene("odd grid 101 x 99", lambda: contactlib.surfaces.self_affine(
+        101, hurst=0.7, q_roll=2, q_cutoff=25, rms_slope=0.1, seed=1).isel(y=slice(0, 99)),
+        {"mean_pressure": 0.02}, check_fraction(0.05, 0.6)),
+    Scene("non-power-of-two 96 x 96, Love kernel", rough(96), {"mean_pressure": 0.02, "kernel": "love"},
+          check_fraction(0.05, 0.6)),
+    Scene("anisotropic gamma 0.1", rough(128, anisotropy=0.1, angle=0.3), {"mean_pressure": 0.02},
+          check_fraction(0.05, 0.6)),
+]
+
+
+@pytest.mark.parametrize("scene", SCENES, ids=[s.name for s in SCENES])
+def test_hard_case(scene):
+    heights = scene.surface()
+    kwargs = {"tol": 1e-8, **scene.solve}
+    out = contactlib.solve(heights, E=E, nu=NU, **kwargs)
+    p, g = out.pressure.values, out.gap.values
+    assert out.attrs["converged"] == 1 and float(out.residual) <= kwargs["tol"]
+    assert p.min() >= 0
+    scale = float(np.sqrt(np.mean((heights - heights.mean()).values ** 2))) or 1.0
+    assert np.mean(np.maximum(-g, 0)) <= 10 * kwargs["tol"] * scale
+    if "mean_pressure" in kwargs:
+        assert p.mean() == pytest.approx(kwargs["mean_pressure"], rel=1e-10)
+    if scene.check:
+        scene.check(out)
+
+
+def test_heights_from_1e_minus_9_to_1e3_same_dimensionless_answer():
+    base = contactlib.surfaces.self_affine(64, hurst=0.8, q_roll=2, q_cutoff=16, rms_slope=0.1, seed=1)
+    ref = contactlib.solve(base, E=E, nu=NU, mean_pressure=0.01, tol=1e-10)
+    for s in (1e-9, 1e-3, 1e3):
+        out = contactlib.solve(base * s, E=E, nu=NU, mean_pressure=0.01 * s, tol=1e-10)
+        assert float(out.contact_area) == float(ref.contact_area)
+        assert float(out.penetration) / s == pytest.approx(float(ref.penetration), rel=1e-8)
+
+
+def test_non_periodic_contact_reaching_the_window_edge_is_refused():
+    h = contactlib.surfaces.paraboloid(64, radius=1.0)
+    with pytest.raises(ValueError, match="edge of the window"):
+        contactlib.solve(h, E=E, nu=NU, penetration=0.3, periodic=False)  # a = 0.55 > L/2
