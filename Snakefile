@@ -1,0 +1,22 @@
+# contactlib parametric studies: `snakemake --cores 2` regenerates every dataset and figure.
+from snakemake.utils import min_version
+
+min_version("8.0")
+
+
+configfile: "workflow/config.yaml"
+
+
+report: "workflow/report/workflow.rst"
+
+
+include: "workflow/rules/common.smk"
+include: "workflow/rules/surfaces.smk"
+include: "workflow/rules/sweep.smk"
+include: "workflow/rules/figures.smk"
+
+
+rule all:
+    input:
+        expand("results/{study}.nc", study=STUDIES),
+        expand("results/figures/{study}.png", study=STUDIES),

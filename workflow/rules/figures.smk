@@ -1,0 +1,45 @@
+rule plot_validation:
+    input:
+        data="results/validation.nc",
+    output:
+        report(
+            "results/figures/validation.png",
+            caption="../report/validation.rst",
+            category="Validation",
+        ),
+    log:
+        "logs/plot/validation.log",
+    script:
+        "../scripts/plot_validation.py"
+
+
+rule plot_area_load:
+    input:
+        data="results/area_load.nc",
+        surfaces=surfaces_of("area_load"),
+    output:
+        report(
+            "results/figures/area_load.png",
+            caption="../report/area_load.rst",
+            category="Rough contact",
+        ),
+    log:
+        "logs/plot/area_load.log",
+    script:
+        "../scripts/plot_area_load.py"
+
+
+rule plot_anisotropy:
+    input:
+        data="results/anisotropy.nc",
+        surfaces=surfaces_of("anisotropy"),
+    output:
+        report(
+            "results/figures/anisotropy.png",
+            caption="../report/anisotropy.rst",
+            category="Rough contact",
+        ),
+    log:
+        "logs/plot/anisotropy.log",
+    script:
+        "../scripts/plot_anisotropy.py"

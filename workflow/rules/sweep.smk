@@ -1,0 +1,14 @@
+rule run_study:
+    output:
+        "results/{study}.nc",
+    params:
+        spec=study_spec,
+        material=lookup(dpath="material", within=config),
+        solver=lookup(dpath="solver", within=config),
+        dask=lookup(dpath="dask", within=config),
+        checkpoints="results/checkpoints/{study}",
+    threads: sweep_threads
+    log:
+        "logs/run_study/{study}.log",
+    script:
+        "../scripts/run_study.py"

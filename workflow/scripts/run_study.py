@@ -1,0 +1,43 @@
+"""Fan one study's grid over Dask (contactlib.sweep.run_grid) and write results/{study}.nc."""
+
+import functools
+import json
+import sys
+
+from contactlib import studies, sweep
+
+
+def main(sm):
+    spec, material, solver, dask = sm.params.spec, sm.params.material, sm.params.solver, dict(sm.params.dask)
+    log_file = open(sm.log[0], "w")
+
+    def emit(line):
+        for stream in (log_file, sys.stderr):
+            print(f"{spec['name']}: {line}", file=stream, flush=True)
+
+    study = studies.STUDIES[spec["name"]]
+    constants = {**material, **solver, **spec["constants"]}
+    if not dask["scheduler_address"]:  # a LocalCluster sized to the cores Snakemake gave this job
+        dask["n_workers"] = max(1, min(dask["n_workers"], sm.threads // dask["threads_per_worker"]))
+    config = {"study": spec, "material": material, "solver": solver, "dask": dask}
+    with sweep.open_client(**dask, log=emit) as client:
+        ds = sweep.run_grid(
+            functools.partial(study["point"], **constants),
+            spec["grid"],
+            client=client,
+            checkpoint_dir=sm.params.checkpoints,
+            fingerprint=json.dumps(constants, sort_keys=True),
+            fft_shapes=study["fft_shapes"](spec["grid"], constants),
+            labels=studies.STUDY_VARIABLES,
+            attrs={"title": spec["title"], "source": f"contactlib.studies.{study['point'].__name__}",
+                   "study": spec["name"], "scale": spec["scale"], "config": json.dumps(config, sort_keys=True),
+                   "length_scale": "1 m", "E": material["E"], "nu": material["nu"],
+                   "E_star": material["E"] / (1 - material["nu"] ** 2)},
+            progress=emit,
+        )
+    sweep.write_netcdf(ds, sm.output[0], sweep_dims=spec["grid"])
+    emit(f"wrote {sm.output[0]}: {dict(ds.sizes)}, {int((ds.status != 0).sum())} failed points")
+
+
+if __name__ == "__main__":  # Dask's spawned workers re-import this file as __mp_main__
+    main(snakemake)  # noqa: F821 (injected by Snakemake)
