@@ -35,7 +35,7 @@ STUDY_VARIABLES: dict[str, dict[str, str]] = {
     "hertz_peak_pressure_exact": {"units": "Pa", "long_name": "Hertz sphere peak pressure, analytic"},
     "westergaard_contact_fraction": {"units": "1", "long_name": "Westergaard 1D contact fraction, numerical"},
     "westergaard_contact_fraction_exact": {"units": "1", "long_name": "Westergaard 1D contact fraction, analytic"},
-    "westergaard_pressure_error": {"units": "1", "long_name": "Westergaard max pressure error / peak pressure"},
+    "westergaard_pressure_error": {"units": "1", "long_name": "Westergaard rms pressure error / peak pressure"},
     "hurst": {"units": "1", "long_name": "Hurst exponent"},
     "reduced_pressure": {"units": "1", "long_name": "mean pressure / (E* rms slope)"},
     "contact_area": {"units": "1", "long_name": "contact area fraction"},
@@ -87,7 +87,7 @@ def validation_point(*, n: int, contact_fraction: float, radius: float, amplitud
         "hertz_peak_pressure_exact": 3.0 * load / (2.0 * math.pi * a_exact**2),
         "westergaard_contact_fraction": float(wave.contact_area),
         "westergaard_contact_fraction_exact": float(contact_fraction),
-        "westergaard_pressure_error": float(np.max(np.abs(wave.pressure.values - exact)) / exact.max()),
+        "westergaard_pressure_error": float(np.sqrt(np.mean((wave.pressure.values - exact) ** 2)) / exact.max()),
         "iterations": float(out.iterations),
         "residual": max(float(out.residual), float(wave.residual)),
     }
