@@ -8,6 +8,8 @@ linear (aperiodic) convolution. Solvers only see ``apply(pressure) -> displaceme
 
 from __future__ import annotations
 
+from functools import lru_cache
+
 import numpy as np
 
 from . import fft
@@ -15,6 +17,22 @@ from .grid import Grid
 from .kernels import elastic
 
 KERNELS = ("spectral", "love")
+
+
+@lru_cache(maxsize=8)
+def _unit_multiplier(grid: Grid, kernel: str, periodic: bool) -> np.ndarray:
+    """Normalised convolution multiplier for ``E* = 1``, cached: the Love image sums cost seconds
+    at N = 1024 and a sweep solves the same grid many times."""
+    if periodic:
+        build = elastic.halfspace_spectral_multiplier if kernel == "spectral" else elastic.halfspace_love_multiplier
+        transfer, shape = build(grid, 1.0), grid.shape
+    else:
+        build = elastic.halfspace_point_influence if kernel == "spectral" else elastic.halfspace_love_influence
+        shape = grid.padded().shape
+        transfer = fft.rfftn(build(grid, 1.0)).real  # symmetric kernel: real spectrum
+    multiplier = fft.convolution_multiplier(transfer, shape)
+    multiplier.flags.writeable = False
+    return multiplier
 
 
 class Compliance:
@@ -36,13 +54,7 @@ class Compliance:
             raise ValueError(f"kernel must be one of {KERNELS}, got {kernel!r}")
         self.grid, self.E_star, self.kernel, self.periodic = grid, float(E_star), kernel, bool(periodic)
         self.work_shape = grid.shape if periodic else grid.padded().shape
-        if periodic:
-            build = elastic.halfspace_spectral_multiplier if kernel == "spectral" else elastic.halfspace_love_multiplier
-            transfer = build(grid, self.E_star)
-        else:
-            build = elastic.halfspace_point_influence if kernel == "spectral" else elastic.halfspace_love_influence
-            transfer = fft.rfftn(build(grid, self.E_star)).real
-        self.multiplier = fft.convolution_multiplier(transfer, self.work_shape)
+        self.multiplier = _unit_multiplier(grid, kernel, self.periodic) / self.E_star
         self._block = tuple(slice(0, n) for n in grid.shape)
 
     def load(self) -> np.ndarray:

@@ -60,6 +60,7 @@ def halfspace_love_multiplier(grid: Grid, E_star: float, *, images: int | None =
             with np.errstate(divide="ignore", invalid="ignore"):
                 term = np.where(absq > 0, 2.0 / (E_star * absq) * _sinc(qm * d[0] / 2), 0.0)
             out += term
+        out[0] = 0.0  # zero-mean displacement (the image terms vanish there up to rounding)
         return out
     Kx, Ky = 2 * np.pi / d[0], 2 * np.pi / d[1]
     for mx in orders:
@@ -70,6 +71,7 @@ def halfspace_love_multiplier(grid: Grid, E_star: float, *, images: int | None =
             absq = np.sqrt(qx**2 + qy**2)
             with np.errstate(divide="ignore", invalid="ignore"):
                 out += np.where(absq > 0, sx * _sinc(qy * d[1] / 2) * 2.0 / (E_star * absq), 0.0)
+    out[0, 0] = 0.0
     return out
 
 
