@@ -1,0 +1,559 @@
+"""Time to solution of contactlib's elastic contact solver, side by side with its peers.
+
+For each grid size N one self-affine surface is generated, a mean pressure is chosen that gives
+the target contact fraction (10 % by default), and the surface is solved by contactlib at
+``--tol`` and by every installed peer (tamaas' PolonskyKeerRey, optionally ContactMechanics) *at
+equal accuracy*:
+
+* accuracy = relative L2 error of the pressure field against a reference solved by contactlib at
+  ``--ref-tol`` (1e-12) on the same surface. contactlib's own error at ``--tol`` is the target;
+  each peer's tolerance (which measures something else than our residual) is tightened over a
+  half-decade ladder until its pressure error is no larger than ours. The ladder is reported.
+* time = median of ``--repeats`` solves after one warm-up solve of the same shape (FFTW planning
+  excluded: plans are cached per shape and wisdom on disk).
+* FFT pair = median time of one planned pyfftw forward + inverse real FFT of the same grid
+  (``contactlib.fft.get_fft(shape)``), measured in the same run; a Polonsky-Keer iteration needs
+  two, so ``non-FFT share = (t_iter - 2 t_pair) / t_iter``.
+* peak memory = peak RSS of a fresh subprocess during one solve, minus its RSS after imports and
+  after loading the surface (Linux: VmHWM reset through /proc/self/clear_refs; otherwise psutil
+  sampled every 1 ms). It includes FFTW plans/buffers and the returned fields.
+
+Peers are adapters (:class:`Peer`) sharing one interface, so adding one is a class and a line
+in :data:`PEERS`. Run ``python benchmarks/bench_solver.py --help``.
+"""
+
+from __future__ import annotations
+
+import os
+
+for _var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
+    os.environ.setdefault(_var, "1")  # no BLAS/OpenMP threads spinning against FFTW
+
+import argparse
+import contextlib
+import io
+import json
+import math
+import platform
+import re
+import subprocess
+import sys
+import tempfile
+import threading
+import time
+import warnings
+from dataclasses import asdict, dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+import contactlib
+from contactlib import fft as cfft
+
+
+# ----------------------------------------------------------------------------------------- peers
+
+@dataclass
+class Solution:
+    pressure: np.ndarray
+    iterations: int
+    seconds: float
+
+
+class Peer:
+    """One solver under test: ``solve(heights, mean_pressure, tol) -> Solution``.
+
+    ``heights`` live on the periodic unit square, higher points touch first; ``E``/``nu`` as in
+    :func:`contactlib.solve`; the returned pressure is compressive-positive on the same grid.
+    """
+
+    name = "peer"
+    tol_meaning = ""
+
+    def __init__(self, E: float, nu: float, threads: int):
+        self.E, self.nu, self.threads = E, nu, threads
+
+    @staticmethod
+    def available() -> bool:
+        return True
+
+    @staticmethod
+    def version() -> str:
+        return "?"
+
+    def solve(self, heights: np.ndarray, mean_pressure: float, tol: float) -> Solution:
+        raise NotImplementedError
+
+
+class Contactlib(Peer):
+    name = "contactlib"
+    tol_meaning = "scale-free complementarity residual (contactlib.solvers.contact_residual)"
+
+    def __init__(self, E, nu, threads):
+        super().__init__(E, nu, threads)
+        cfft.set_fft_options(threads=threads)
+
+    @staticmethod
+    def version():
+        return contactlib.__version__
+
+    def solve(self, heights, mean_pressure, tol, *, max_iter=10_000):
+        t0 = time.perf_counter()
+        out = contactlib.solve(heights, E=self.E, nu=self.nu, mean_pressure=mean_pressure, tol=tol, length=1.0,
+                               max_iter=max_iter)
+        dt = time.perf_counter() - t0
+        return Solution(out["pressure"].values, int(out["iterations"]), dt)
+
+    def reference(self, heights, mean_pressure, tol, *, max_iter=3000) -> tuple[Solution, float]:
+        """The tightest solution reachable, and its residual (round-off can stall it above ``tol``)."""
+        try:
+            out = contactlib.solve(heights, E=self.E, nu=self.nu, mean_pressure=mean_pressure, tol=tol,
+                                   length=1.0, max_iter=max_iter)
+        except contactlib.ConvergenceError as exc:
+            out = exc.dataset
+        return Solution(out["pressure"].values, int(out["iterations"]), 0.0), float(out["residual"])
+
+
+@contextlib.contextmanager
+def _capture_output():
+    """Capture what C++ code writes to file descriptors 1 and 2 (tamaas logs its iterations there)."""
+    sys.stdout.flush()
+    sys.stderr.flush()
+    saved = {fd: os.dup(fd) for fd in (1, 2)}
+    buf = io.StringIO()
+    with tempfile.TemporaryFile(mode="w+") as tmp:
+        for fd in (1, 2):
+            os.dup2(tmp.fileno(), fd)
+        try:
+            with contextlib.redirect_stdout(buf), contextlib.redirect_stderr(buf):  # pybind11 redirects
+                yield buf
+        finally:
+            sys.stdout.flush()
+            sys.stderr.flush()
+            for fd, old in saved.items():
+                os.dup2(old, fd)
+                os.close(old)
+            tmp.seek(0)
+            buf.write(tmp.read())
+
+
+class Tamaas(Peer):
+    name = "tamaas"
+    tol_meaning = "tamaas PolonskyKeerRey.computeError (its own normalised complementarity)"
+
+    def __init__(self, E, nu, threads):
+        super().__init__(E, nu, threads)
+        import tamaas as tm
+
+        self.tm = tm
+        tm.initialize(threads)  # the PyPI wheel is built with the cpp backend: single-threaded anyway
+
+    @staticmethod
+    def available():
+        try:
+            import tamaas  # noqa: F401
+        except ImportError:
+            return False
+        return True
+
+    @staticmethod
+    def version():
+        import tamaas as tm
+
+        return f"{tm.__version__} (backend {tm.TamaasInfo.backend})"
+
+    def solve(self, heights, mean_pressure, tol):
+        tm = self.tm
+        n = heights.shape
+        surface = np.ascontiguousarray(heights, dtype=float)
+        t0 = time.perf_counter()
+        model = tm.ModelFactory.createModel(tm.model_type.basic_2d, [1.0, 1.0], list(n))
+        model.E, model.nu = self.E, self.nu
+        solver = tm.PolonskyKeerRey(model, surface, tol, tm.PolonskyKeerRey.pressure, tm.PolonskyKeerRey.pressure)
+        solver.max_iter = 100_000
+        solver.dump_freq = 10**9  # prints only the first and the converged iteration
+        with _capture_output() as log:
+            solver.solve(mean_pressure)
+        dt = time.perf_counter() - t0
+        rows = [ln.split() for ln in log.getvalue().splitlines()]
+        iters = [int(r[0]) for r in rows if r and r[0].isdigit()]
+        return Solution(np.array(model.traction, copy=True).reshape(n), max(iters) if iters else -1, dt)
+
+
+class ContactMechanicsPeer(Peer):
+    """ContactMechanics' constrained_conjugate_gradients (Polonsky-Keer).
+
+    One tolerance ``tol`` drives its three criteria: ``pentol = tol * h_rms``,
+    ``forcetol = tol * mean_pressure * pixel_area``, ``thermotol = tol``.
+    """
+
+    name = "contactmechanics"
+    tol_meaning = "pentol = tol*h_rms, forcetol = tol*p_mean*pixel area, thermotol = tol"
+
+    def __init__(self, E, nu, threads):
+        super().__init__(E, nu, threads)
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            import ContactMechanics
+            from SurfaceTopography import Topography
+        self.cm, self.Topography = ContactMechanics, Topography
+
+    @staticmethod
+    def available():
+        try:
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore")
+                import ContactMechanics  # noqa: F401
+                import SurfaceTopography  # noqa: F401
+        except Exception:
+            return False
+        return True
+
+    @staticmethod
+    def version():
+        import ContactMechanics
+
+        return str(ContactMechanics.__version__)
+
+    def solve(self, heights, mean_pressure, tol):
+        cm = self.cm
+        n = heights.shape
+        E_star = self.E / (1.0 - self.nu**2)
+        h = np.ascontiguousarray(heights, dtype=float)
+        h_rms = float(np.std(h))
+        pixel = 1.0 / h.size
+        t0 = time.perf_counter()
+        substrate = cm.PeriodicFFTElasticHalfSpace(n, E_star, physical_sizes=(1.0, 1.0))
+        topo = self.Topography(h, physical_sizes=(1.0, 1.0), periodic=True)
+        system = cm.make_system(substrate=substrate, surface=topo)
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            sol = system.minimize_proxy(
+                external_force=mean_pressure * 1.0, pentol=tol * h_rms, forcetol=tol * mean_pressure * pixel,
+                thermotol=tol, maxiter=100_000,
+            )
+        dt = time.perf_counter() - t0
+        if not sol.success:
+            raise RuntimeError(f"ContactMechanics did not converge: {sol.message}")
+        return Solution(np.asarray(sol.jac).reshape(n) / pixel, int(sol.nit), dt)
+
+
+PEERS = {"contactlib": Contactlib, "tamaas": Tamaas, "contactmechanics": ContactMechanicsPeer}
+
+
+# ------------------------------------------------------------------------------------- measures
+
+def fft_pair_seconds(shape, *, min_total=0.3, min_reps=20) -> float:
+    """Median time of one planned pyfftw forward + inverse real FFT of ``shape``."""
+    plan = cfft.get_fft(shape)
+    plan.real[...] = np.random.default_rng(0).standard_normal(shape)
+    plan.forward(), plan.inverse()
+    times, start = [], time.perf_counter()
+    while len(times) < min_reps or time.perf_counter() - start < min_total:
+        t0 = time.perf_counter()
+        plan.forward()
+        plan.inverse()
+        times.append(time.perf_counter() - t0)
+    return float(np.median(times))
+
+
+def rel_l2(a: np.ndarray, ref: np.ndarray) -> float:
+    return float(np.linalg.norm(a - ref) / np.linalg.norm(ref))
+
+
+def area(p: np.ndarray) -> float:
+    return float(np.count_nonzero(p > 0)) / p.size
+
+
+def make_surface(n: int, args) -> np.ndarray:
+    h = contactlib.surfaces.self_affine(
+        n, hurst=args.hurst, q_roll=args.q_roll, q_cutoff=n * args.cutoff_fraction, rms_slope=args.rms_slope,
+        seed=args.seed,
+    )
+    return np.ascontiguousarray(h.values)
+
+
+def pressure_for_area(solver: Contactlib, heights: np.ndarray, target: float, args) -> tuple[float, float]:
+    """Mean pressure giving contact fraction ``target`` within 2 % (secant on log A vs log p)."""
+    E_star = args.E / (1 - args.nu**2)
+    p = target * E_star * args.rms_slope / 2.0  # A ~ 2 p / (E* h'_rms) at small contact
+    a = area(solver.solve(heights, p, 1e-6).pressure)
+    slope, history = 1.0, [(p, a)]
+    for _ in range(8):
+        if abs(a / target - 1) < 0.02 or a <= 0:
+            break
+        p = math.exp(math.log(p) + (math.log(target) - math.log(a)) / slope)
+        a = area(solver.solve(heights, p, 1e-6).pressure)
+        (p0, a0), history = history[-1], history + [(p, a)]
+        if a > 0 and a0 > 0 and p != p0 and a != a0:
+            slope = min(max((math.log(a) - math.log(a0)) / (math.log(p) - math.log(p0)), 0.1), 2.0)
+    return p, a
+
+
+def ladder(start: float):
+    """Half-decade tolerances from ``start`` downwards."""
+    k = math.ceil(2 * math.log10(start) - 1e-9)
+    while k > -30:
+        yield 10 ** (k / 2)
+        k -= 1
+
+
+# -------------------------------------------------------------------------------- peak memory
+
+def _rss_kib(key: str) -> int:
+    with open("/proc/self/status") as f:
+        for line in f:
+            if line.startswith(key + ":"):
+                return int(line.split()[1])
+    raise KeyError(key)
+
+
+def memory_probe(args) -> None:
+    """Child process: peak RSS increase during one solve (printed as JSON on the last line)."""
+    heights = np.load(args.probe_surface)
+    peer = PEERS[args.probe_peer](args.E, args.nu, args.probe_threads)
+    method = "VmHWM"
+    try:
+        with open("/proc/self/clear_refs", "w") as f:
+            f.write("5")  # reset the high-water mark to the current RSS
+        base = _rss_kib("VmRSS")
+        sol = peer.solve(heights, args.probe_pressure, args.probe_tol)
+        peak = _rss_kib("VmHWM")
+    except OSError:
+        import psutil
+
+        method = "psutil 1 ms sampling"
+        proc, stop, samples = psutil.Process(), threading.Event(), []
+        base = proc.memory_info().rss // 1024
+
+        def sample():
+            while not stop.is_set():
+                samples.append(proc.memory_info().rss // 1024)
+                time.sleep(0.001)
+
+        th = threading.Thread(target=sample, daemon=True)
+        th.start()
+        sol = peer.solve(heights, args.probe_pressure, args.probe_tol)
+        stop.set()
+        th.join()
+        peak = max(samples + [proc.memory_info().rss // 1024])
+    print(json.dumps({"peak_mib": (peak - base) / 1024, "method": method, "iterations": sol.iterations}))
+
+
+def peak_memory(peer: str, heights: np.ndarray, p: float, tol: float, threads: int, args) -> dict:
+    with tempfile.TemporaryDirectory() as tmp:
+        path = Path(tmp) / "h.npy"
+        np.save(path, heights)
+        cmd = [sys.executable, __file__, "--_probe", "--probe-peer", peer, "--probe-surface", str(path),
+               "--probe-pressure", repr(p), "--probe-tol", repr(tol), "--probe-threads", str(threads),
+               "--E", repr(args.E), "--nu", repr(args.nu)]
+        out = subprocess.run(cmd, capture_output=True, text=True)
+    lines = [ln for ln in out.stdout.splitlines() if ln.startswith("{")]
+    if out.returncode or not lines:
+        return {"peak_mib": float("nan"), "method": f"probe failed: {out.stderr[-300:]}"}
+    return json.loads(lines[-1])
+
+
+# ------------------------------------------------------------------------------------- driver
+
+@dataclass
+class Row:
+    solver: str
+    n: int
+    threads: int
+    target_area: float
+    mean_pressure: float
+    tol: float
+    time_s: float
+    times_s: list
+    iterations: int
+    fft_pair_s: float
+    iter_over_fft_pair: float
+    non_fft_share: float
+    contact_area: float
+    pressure_error: float  # rel L2 vs the tight contactlib reference
+    reference_residual: float
+    peak_mib: float = float("nan")
+    memory_method: str = ""
+    area_rel_diff_vs_contactlib: float = 0.0
+    pressure_rel_l2_vs_contactlib: float = 0.0
+    time_ratio_contactlib_over_this: float = float("nan")
+    ladder: list = field(default_factory=list)
+
+
+def timed(peer: Peer, heights, p, tol, repeats) -> tuple[list[float], Solution]:
+    sols = [peer.solve(heights, p, tol) for _ in range(repeats)]
+    return [s.seconds for s in sols], sols[-1]
+
+
+def bench_case(n, heights, target, threads, args, log) -> list[Row]:
+    ours = Contactlib(args.E, args.nu, threads)
+    pair = fft_pair_seconds(heights.shape)
+    p, a_cal = pressure_for_area(ours, heights, target, args)
+    log(f"  N={n} threads={threads} target A={target}: mean pressure {p:.6g} (A={a_cal:.4f}), FFT pair {pair*1e3:.3f} ms")
+    ref, ref_residual = ours.reference(heights, p, args.ref_tol)
+    ours.solve(heights, p, args.tol)  # warm-up (planning is cached anyway)
+    times, sol = timed(ours, heights, p, args.tol, args.repeats)
+    err_ours = rel_l2(sol.pressure, ref.pressure)
+    t_iter = float(np.median(times)) / max(sol.iterations, 1)
+    base = Row("contactlib", n, threads, target, p, args.tol, float(np.median(times)), times, sol.iterations, pair,
+               t_iter / pair, (t_iter - 2 * pair) / t_iter, area(sol.pressure), err_ours, ref_residual,
+               ladder=[{"tol": args.tol, "pressure_error": err_ours, "iterations": sol.iterations}],
+               time_ratio_contactlib_over_this=1.0)
+    log(f"    contactlib: {base.time_s:.3f} s, {sol.iterations} it, error {err_ours:.2e} (ref: {ref.iterations} it, residual {ref_residual:.1e})")
+    rows = [base]
+    for name in args.peers:
+        if name == "contactlib" or not PEERS[name].available():
+            continue
+        peer = PEERS[name](args.E, args.nu, threads)
+        steps, chosen = [], None
+        for tol in ladder(max(err_ours, 1e-14)):
+            s = peer.solve(heights, p, tol)
+            e = rel_l2(s.pressure, ref.pressure)
+            steps.append({"tol": tol, "pressure_error": e, "iterations": s.iterations, "time_s": s.seconds})
+            log(f"    {name} tol {tol:.2e}: error {e:.2e}, {s.iterations} it, {s.seconds:.2f} s")
+            if e <= err_ours:
+                chosen = tol
+                break
+            if len(steps) >= args.max_ladder:
+                break
+        if chosen is None:
+            log(f"    {name}: no tolerance on the ladder reached error {err_ours:.2e}; using the tightest tried")
+            chosen = steps[-1]["tol"]
+        times, s = timed(peer, heights, p, chosen, args.repeats)
+        t_iter = float(np.median(times)) / max(s.iterations, 1)
+        rows.append(Row(name, n, threads, target, p, chosen, float(np.median(times)), times, s.iterations, pair,
+                        t_iter / pair, (t_iter - 2 * pair) / t_iter, area(s.pressure),
+                        rel_l2(s.pressure, ref.pressure), ref_residual, ladder=steps,
+                        area_rel_diff_vs_contactlib=(base.contact_area - area(s.pressure)) / area(s.pressure),
+                        pressure_rel_l2_vs_contactlib=rel_l2(sol.pressure, s.pressure),
+                        time_ratio_contactlib_over_this=base.time_s / float(np.median(times))))
+        log(f"    {name}: {rows[-1].time_s:.3f} s at tol {chosen:.2e}, ratio contactlib/{name} {rows[-1].time_ratio_contactlib_over_this:.3f}")
+    if args.memory:
+        for row in rows:
+            mem = peak_memory(row.solver, heights, p, row.tol, threads, args)
+            row.peak_mib, row.memory_method = mem["peak_mib"], mem["method"]
+    return rows
+
+
+def machine_info() -> dict:
+    cpu = "?"
+    try:
+        with open("/proc/cpuinfo") as f:
+            cpu = next(ln.split(":", 1)[1].strip() for ln in f if ln.startswith("model name"))
+    except (OSError, StopIteration):
+        pass
+    import pyfftw
+
+    info = {
+        "cpu": cpu, "logical_cpus": os.cpu_count(), "python": platform.python_version(), "numpy": np.__version__,
+        "pyfftw": pyfftw.__version__, "contactlib": contactlib.__version__, "fftw_effort": cfft.fft_options()["effort"],
+        "date": time.strftime("%Y-%m-%d %H:%M:%S"), "command": " ".join([Path(sys.argv[0]).name] + sys.argv[1:]),
+    }
+    try:
+        repo = Path(__file__).resolve().parent.parent
+        rev = subprocess.run(["git", "-C", str(repo), "describe", "--always", "--dirty"], capture_output=True, text=True)
+        info["contactlib_git"] = rev.stdout.strip() or "?"
+    except OSError:
+        pass
+    try:
+        import psutil
+
+        info["memory_gib"] = round(psutil.virtual_memory().total / 2**30, 1)
+        info["load_avg_1min"] = os.getloadavg()[0]
+    except ImportError:
+        pass
+    for name, peer in PEERS.items():
+        if name != "contactlib":
+            info[name] = peer.version() if peer.available() else "not installed"
+    return info
+
+
+def markdown(rows: list[Row], info: dict, args) -> str:
+    out = ["# contactlib solver benchmark", ""]
+    out += [f"- {k}: {v}" for k, v in info.items()]
+    out += [f"- surface: self_affine(N, hurst={args.hurst}, q_roll={args.q_roll}, q_cutoff={args.cutoff_fraction}*N, "
+            f"rms_slope={args.rms_slope}, seed={args.seed}); E={args.E}, nu={args.nu}; periodic unit square",
+            f"- accuracy: pressure error = rel. L2 vs contactlib at tol {args.ref_tol:g} (or the smallest residual it "
+            "reaches in 3000 iterations: column ref res); peers' tolerance tightened "
+            f"(half decades) until their error <= contactlib's at tol {args.tol:g}",
+            f"- time: median of {args.repeats} after a warm-up; FFT pair = planned pyfftw rfft+irfft of the grid; "
+            "non-FFT share = (t_iter - 2 pairs)/t_iter",
+            "- peak memory: fresh subprocess, peak RSS during one solve minus RSS after imports and surface load "
+            f"({rows[0].memory_method or 'not measured'})", ""]
+    out.append("| solver | N | thr | A target | A | tol | error | ref res | time [s] | iter | t_iter/FFT pair | non-FFT | "
+               "peak [MiB] | t_ours/t_peer | dA rel | dp L2 |")
+    out.append("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
+    for r in rows:
+        peer = r.solver != "contactlib"
+        out.append(
+            f"| {r.solver} | {r.n} | {r.threads} | {r.target_area:g} | {r.contact_area:.4f} | {r.tol:.1e} | "
+            f"{r.pressure_error:.1e} | {r.reference_residual:.0e} | {r.time_s:.3f} | {r.iterations} | {r.iter_over_fft_pair:.1f} | "
+            f"{100 * r.non_fft_share:.0f} % | {r.peak_mib:.1f} | "
+            f"{f'{r.time_ratio_contactlib_over_this:.3f}' if peer else ''} | "
+            f"{f'{r.area_rel_diff_vs_contactlib:.1e}' if peer else ''} | "
+            f"{f'{r.pressure_rel_l2_vs_contactlib:.1e}' if peer else ''} |")
+    out += ["", "error: pressure rel. L2 vs the tight reference; t_ours/t_peer: contactlib time over this solver's "
+            "time (< 1: contactlib faster); dA rel: (A_contactlib - A_peer)/A_peer; dp L2: |p_contactlib - p_peer| / "
+            "|p_peer|."]
+    return "\n".join(out)
+
+
+def parse(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("--sizes", type=int, nargs="+", default=[256, 512, 1024, 2048])
+    ap.add_argument("--contact", type=float, nargs="+", default=[0.1], help="target contact fractions")
+    ap.add_argument("--threads", type=int, nargs="+", default=[1], help="FFTW threads (each value one pass)")
+    ap.add_argument("--repeats", type=int, default=3)
+    ap.add_argument("--peers", nargs="+", default=["tamaas"], choices=sorted(PEERS),
+                    help="peers to compare with (skipped when not installed); contactmechanics is slow")
+    ap.add_argument("--tol", type=float, default=1e-8)
+    ap.add_argument("--ref-tol", type=float, default=1e-12)
+    ap.add_argument("--max-ladder", type=int, default=8, help="most tolerances tried per peer")
+    ap.add_argument("--no-memory", dest="memory", action="store_false", help="skip the peak-memory subprocesses")
+    ap.add_argument("--hurst", type=float, default=0.8)
+    ap.add_argument("--q-roll", type=float, default=4.0)
+    ap.add_argument("--cutoff-fraction", type=float, default=1 / 8, help="q_cutoff = fraction * N")
+    ap.add_argument("--rms-slope", type=float, default=0.1)
+    ap.add_argument("--seed", type=int, default=1)
+    ap.add_argument("--E", type=float, default=1.0)
+    ap.add_argument("--nu", type=float, default=0.3)
+    ap.add_argument("--json", type=Path, help="also write rows and machine info here")
+    ap.add_argument("--quiet", action="store_true", help="no progress on stderr")
+    for hidden in ("--probe-peer", "--probe-surface"):
+        ap.add_argument(hidden, help=argparse.SUPPRESS)
+    ap.add_argument("--probe-pressure", type=float, help=argparse.SUPPRESS)
+    ap.add_argument("--probe-tol", type=float, help=argparse.SUPPRESS)
+    ap.add_argument("--probe-threads", type=int, default=1, help=argparse.SUPPRESS)
+    ap.add_argument("--_probe", action="store_true", help=argparse.SUPPRESS)
+    return ap.parse_args(argv)
+
+
+def main(argv=None) -> int:
+    args = parse(argv)
+    if args._probe:
+        memory_probe(args)
+        return 0
+
+    def log(msg):
+        if not args.quiet:
+            print(msg, file=sys.stderr, flush=True)
+
+    info = machine_info()
+    rows = []
+    for n in args.sizes:
+        heights = make_surface(n, args)
+        for threads in args.threads:
+            for target in args.contact:
+                rows += bench_case(n, heights, target, threads, args, log)
+    text = markdown(rows, info, args)
+    print(text)
+    if args.json:
+        args.json.write_text(json.dumps({"machine": info, "args": {k: (str(v) if isinstance(v, Path) else v)
+                                         for k, v in vars(args).items() if not k.startswith(("probe", "_"))},
+                                         "rows": [asdict(r) for r in rows]}, indent=1))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
