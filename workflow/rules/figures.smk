@@ -9,6 +9,8 @@ rule plot_validation:
         ),
     log:
         "logs/plot/validation.log",
+    conda:
+        "../envs/contactlib.yaml"
     script:
         "../scripts/plot_validation.py"
 
@@ -25,6 +27,8 @@ rule plot_area_load:
         ),
     log:
         "logs/plot/area_load.log",
+    conda:
+        "../envs/contactlib.yaml"
     script:
         "../scripts/plot_area_load.py"
 
@@ -41,5 +45,7 @@ rule plot_anisotropy:
         ),
     log:
         "logs/plot/anisotropy.log",
+    conda:
+        "../envs/contactlib.yaml"
     script:
         "../scripts/plot_anisotropy.py"

@@ -5,5 +5,7 @@ rule generate_surfaces:
         spec=study_spec,
     log:
         "logs/generate_surfaces/{study}.log",
+    conda:
+        "../envs/contactlib.yaml"
     script:
         "../scripts/generate_surfaces.py"

@@ -10,5 +10,7 @@ rule run_study:
     threads: sweep_threads
     log:
         "logs/run_study/{study}.log",
+    conda:
+        "../envs/contactlib.yaml"
     script:
         "../scripts/run_study.py"

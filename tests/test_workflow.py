@@ -1,0 +1,87 @@
+"""The Snakemake workflow: lint, dry runs, config validation, and one tiny end-to-end run (slow)."""
+
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+import xarray as xr
+import yaml
+
+ROOT = Path(__file__).resolve().parents[1]
+TINY = ROOT / "tests" / "data" / "tiny_config.yaml"
+
+pytestmark = pytest.mark.slow
+
+
+@pytest.fixture(scope="module")
+def workdir(tmp_path_factory):
+    """A copy of the workflow, so the run writes results/ outside the checkout."""
+    work = tmp_path_factory.mktemp("wf")
+    shutil.copy(ROOT / "Snakefile", work / "Snakefile")
+    shutil.copytree(ROOT / "workflow", work / "workflow")
+    shutil.copy(TINY, work / "tiny.yaml")
+    return work
+
+
+def snakemake(work, *args, timeout=120):
+    return subprocess.run([sys.executable, "-m", "snakemake", *args], cwd=work, capture_output=True, text=True,
+                          timeout=timeout)
+
+
+def test_lint_and_dry_runs(workdir):
+    lint = snakemake(workdir, "--lint")
+    assert lint.returncode == 0 and "good condition" in lint.stdout + lint.stderr, lint.stdout + lint.stderr
+    for extra in ([], ["--configfile", "tiny.yaml"], ["--config", "scale=paper"]):
+        dry = snakemake(workdir, "-n", *extra)
+        assert dry.returncode == 0, dry.stderr
+        assert "run_study" in dry.stdout and "plot_area_load" in dry.stdout
+
+
+@pytest.mark.parametrize("path, value, message", [
+    (("studies", "area_load", "quick", "grid", "hurst"), [0.5, 1.5], "1.5 is greater than the maximum of 1"),
+    (("scale",), "huge", "'huge' is not one of ['quick', 'paper']"),
+    (("material", "nu"), 0.7, "0.7 is greater than the maximum of 0.5"),
+    (("studies", "validation", "quick", "grid", "n"), [64, 12], "12 is less than the minimum of 16"),
+])
+def test_bad_config_is_rejected_with_a_clear_message(workdir, path, value, message):
+    config = yaml.safe_load(TINY.read_text())
+    node = config
+    for key in path[:-1]:
+        node = node[key]
+    node[path[-1]] = value
+    bad = workdir / "bad.yaml"
+    bad.write_text(yaml.safe_dump(config))
+    out = snakemake(workdir, "-n", "--configfile", "bad.yaml")
+    assert out.returncode != 0
+    assert message in out.stdout + out.stderr
+
+
+def test_tiny_end_to_end_run_and_report(workdir):
+    run = snakemake(workdir, "--cores", "2", "--configfile", "tiny.yaml", timeout=600)
+    assert run.returncode == 0, run.stdout[-3000:] + run.stderr[-3000:]
+    assert "dashboard" in run.stderr and "ETA" in run.stderr
+    results = workdir / "results"
+    with xr.open_dataset(results / "area_load.nc") as ds:
+        assert dict(ds.sizes) == {"hurst": 3, "n": 2, "seed": 2, "reduced_pressure": 4}  # 48 points
+        assert (ds.status == 0).all()
+        for name in list(ds.data_vars) + list(ds.coords):
+            assert ds[name].attrs.get("units") and ds[name].attrs.get("long_name"), name
+        assert ds.hurst.attrs["long_name"] == "Hurst exponent" and ds.mean_pressure.attrs["units"] == "Pa"
+        for key in ("title", "source", "history", "Conventions", "contactlib_version", "git_revision",
+                    "date_created", "config"):
+            assert ds.attrs[key], key
+        assert yaml.safe_load(ds.attrs["config"])["study"]["grid"]["n"] == [32, 64]
+        assert 1.5 < float(ds.kappa.mean()) < 3.5
+    with xr.open_dataset(results / "validation.nc") as ds:
+        ratio = ds.hertz_peak_pressure / ds.hertz_peak_pressure_exact
+        assert float(abs(ratio.sel(n=64) - 1).max()) < 0.05
+    with xr.open_dataset(results / "surfaces" / "anisotropy.nc") as ds:
+        assert ds.height.dims == ("anisotropy", "seed", "x", "y") and ds.height.attrs["units"] == "m"
+    for study in ("validation", "area_load", "anisotropy"):
+        assert (results / "figures" / f"{study}.png").stat().st_size > 10_000
+    assert not list(results.glob(".*.tmp"))
+    report = snakemake(workdir, "--configfile", "tiny.yaml", "--report", "results/report.html", timeout=300)
+    assert report.returncode == 0, report.stderr[-3000:]
+    assert (results / "report.html").stat().st_size > 10_000
