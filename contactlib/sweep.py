@@ -143,6 +143,8 @@ class Progress:
         eta = elapsed / self.done * (self.total - self.done)
         params = " ".join(f"{k}={v:g}" if isinstance(v, float) else f"{k}={v}" for k, v in result["params"].items())
         state = ("cached" if cached else ("ok", "not converged", "bad input")[result["status"]])
+        if result["status"] and result.get("message"):
+            state += f" ({result['message'][:120]})"
         line = (f"[{self.done}/{self.total}] {params} {state} {result['wall_time']:.2f} s | "
                 f"elapsed {elapsed:.1f} s, ETA {eta:.1f} s")
         if callable(self.sink):
