@@ -102,18 +102,21 @@ def rough_surface(*, n: int, hurst: float, seed: int, q_low: float, q_roll: floa
 
 def area_load_point(*, hurst: float, n: int, seed: int, reduced_pressure: float, q_low: float, q_roll: float,
                     q_cutoff: float, rms_slope: float, E: float, nu: float, tol: float, max_iter: int,
-                    kernel: str) -> dict:
-    """Contact area at mean pressure ``reduced_pressure * E* * rms_slope`` (measured slope of the grid)."""
+                    kernel: str, initial_pressure=None) -> dict:
+    """Contact area at mean pressure ``reduced_pressure * E* * rms_slope`` (measured slope of the grid).
+
+    ``initial_pressure`` warm-starts the solver (the ``_warm_start`` output of a lower load on the same surface).
+    """
     h = rough_surface(n=n, hurst=hurst, seed=seed, q_low=q_low, q_roll=q_roll, q_cutoff=q_cutoff,
                       rms_slope=rms_slope)
     slope = analysis.rms_slope(h)
     E_star = contact_modulus(E, nu)
     out = solve(h, E=E, nu=nu, mean_pressure=reduced_pressure * E_star * slope, tol=tol, max_iter=max_iter,
-                kernel=kernel)
+                kernel=kernel, initial_pressure=initial_pressure)
     area = float(out.contact_area)
     return {"contact_area": area, "mean_pressure": float(out.mean_pressure), "penetration": float(out.penetration),
             "iterations": float(out.iterations), "residual": float(out.residual), "rms_slope": slope,
-            "kappa": area / reduced_pressure}
+            "kappa": area / reduced_pressure, "_warm_start": out.pressure.values}
 
 
 def anisotropy_point(*, anisotropy: float, seed: int, n: int, hurst: float, angle: float, reduced_pressure: float,
@@ -143,7 +146,8 @@ def anisotropy_point(*, anisotropy: float, seed: int, n: int, hurst: float, angl
 STUDIES = {
     "validation": {"point": validation_point,
                    "fft_shapes": lambda grid, c: [s for n in grid["n"] for s in ((2 * n, 2 * n), (n,))]},
-    "area_load": {"point": area_load_point, "fft_shapes": lambda grid, c: [(n, n) for n in grid["n"]]},
+    "area_load": {"point": area_load_point, "fft_shapes": lambda grid, c: [(n, n) for n in grid["n"]],
+                  "path_dim": "reduced_pressure"},
     "anisotropy": {"point": anisotropy_point, "fft_shapes": lambda grid, c: [(c["n"], c["n"])]},
 }
 STUDIES["area_load"]["surface_keys"] = ("hurst", "seed")

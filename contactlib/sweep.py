@@ -70,21 +70,40 @@ def _prepare_worker(wisdom, threads: int) -> None:
         _worker_wisdom["digest"] = digest
 
 
-def evaluate_point(point_fn: Callable, params: dict, wisdom=None, threads: int = 1) -> dict:
-    """Run one point, turning the expected failures into a status code (runs on a worker)."""
+def evaluate_point(point_fn: Callable, params: dict, wisdom=None, threads: int = 1, **extra) -> dict:
+    """Run one point, turning the expected failures into a status code (runs on a worker).
+
+    Outputs whose names start with ``_`` (e.g. ``_warm_start``) are returned apart, under ``"private"``.
+    """
     _prepare_worker(wisdom, threads)
     start = time.perf_counter()
     values, message = {}, ""
     try:
-        values = dict(point_fn(**params))
+        values = dict(point_fn(**params, **extra))
         status = STATUS_OK
         residual = float(values.pop("residual", math.nan))
     except ConvergenceError as err:
         status, residual, message = STATUS_NOT_CONVERGED, float(err.residual), str(err)
     except ValueError as err:
         status, residual, message = STATUS_BAD_INPUT, math.nan, str(err)
+    private = {k: values.pop(k) for k in [k for k in values if k.startswith("_")]}
     return {"params": dict(params), "values": values, "status": status, "residual": residual,
-            "wall_time": time.perf_counter() - start, "message": message}
+            "wall_time": time.perf_counter() - start, "message": message, "private": private}
+
+
+def evaluate_task(point_fn: Callable, points: list[dict], wisdom=None, threads: int = 1,
+                  warm_start: bool = False) -> list[dict]:
+    """Run the points of one task in order; along a load path each point starts from the last converged
+    ``_warm_start`` output (passed as ``initial_pressure``)."""
+    results, state = [], None
+    for params in points:
+        extra = {"initial_pressure": state} if warm_start and state is not None else {}
+        result = evaluate_point(point_fn, params, wisdom, threads, **extra)
+        if result["status"] == STATUS_OK:
+            state = result["private"].get("_warm_start", state)
+        result.pop("private")
+        results.append(result)
+    return results
 
 
 def _write_atomic(path: Path, write: Callable[[Path], None]) -> None:
@@ -164,6 +183,7 @@ def run_grid(
     labels: Mapping[str, Mapping[str, str]] | None = None,
     attrs: Mapping | None = None,
     progress: bool | Callable[[str], None] = True,
+    path_dim: str | None = None,
 ) -> xr.Dataset:
     """Evaluate ``point_fn(**point)`` at every point of ``grid`` and combine into one Dataset.
 
@@ -178,7 +198,7 @@ def run_grid(
     client : distributed.Client, optional
         Run one task per point on this client; ``None`` runs the points here, one after another.
     checkpoint_dir : path, optional
-        One file per finished point; points found there are loaded, not recomputed.
+        One file per finished task (point or path); tasks found there are loaded, not recomputed.
     fingerprint : str
         Anything that changes what a point computes (the study's config); part of each point's key.
     fft_shapes : iterable of shapes
@@ -190,6 +210,11 @@ def run_grid(
         Global attributes (``title``, ``source``, ``config``, ...); provenance is added.
     progress : bool or callable
         Per-point log line with ETA on stderr (``True``), to a callable, or none.
+    path_dim : str, optional
+        A swept name (e.g. a load) to walk as a path: one task per combination of the other names,
+        its points in increasing ``path_dim``, each warm-started from the previous converged point
+        (``point_fn`` must accept ``initial_pressure`` and return ``_warm_start``). Checkpoints are
+        then per path. Without it, one task and one checkpoint per point.
 
     Returns
     -------
@@ -209,39 +234,58 @@ def run_grid(
     keys = [point_key(p, fingerprint) for p in points]
     if len(set(keys)) != len(keys):
         raise ValueError("grid: duplicate points")
+    tasks = _tasks(points, keys, path_dim, fingerprint)
     checkpoint_dir = None if checkpoint_dir is None else Path(checkpoint_dir)
     report = Progress(len(points), progress)
     results: dict[str, dict] = {}
-    if checkpoint_dir is not None:
-        for key in keys:
-            cached = _load_checkpoint(checkpoint_dir, key)
-            if cached is not None:
-                results[key] = cached
-                report(cached, cached=True)
-    todo = [(k, p) for k, p in zip(keys, points) if k not in results]
+    todo = []
+    for task_key, members in tasks.items():
+        cached = None if checkpoint_dir is None else _load_checkpoint(checkpoint_dir, task_key)
+        if cached is None or len(cached) != len(members):
+            todo.append((task_key, members))
+            continue
+        for (key, _), result in zip(members, cached):
+            results[key] = result
+            report(result, cached=True)
     threads = fft.fft_options()["threads"]
     for shape in fft_shapes:
         fft.get_fft(tuple(shape))
     wisdom = fft.export_wisdom()
+    warm = path_dim is not None
 
-    def finish(key, result):
+    def finish(task_key, members, task_results):
         if checkpoint_dir is not None:
-            _save_checkpoint(checkpoint_dir, key, result)
-        results[key] = result
-        report(result)
+            _save_checkpoint(checkpoint_dir, task_key, task_results)
+        for (key, _), result in zip(members, task_results):
+            results[key] = result
+            report(result)
 
     if client is None:
-        for key, params in todo:
-            finish(key, evaluate_point(point_fn, params, wisdom, threads))
+        for task_key, members in todo:
+            finish(task_key, members, evaluate_task(point_fn, [p for _, p in members], wisdom, threads, warm))
     elif todo:
         from distributed import as_completed
 
-        futures = {client.submit(evaluate_point, point_fn, params, wisdom, 1, key=f"contactlib-point-{key}",
-                                 pure=False): key for key, params in todo}
+        futures = {client.submit(evaluate_task, point_fn, [p for _, p in members], wisdom, 1, warm,
+                                 key=f"contactlib-task-{task_key}", pure=False): (task_key, members)
+                   for task_key, members in todo}
         for future in as_completed(futures):
-            finish(futures[future], future.result())
+            finish(*futures[future], future.result())
             future.release()
     return combine(coords, [results[k] for k in keys], labels=labels, attrs=attrs)
+
+
+def _tasks(points: list[dict], keys: list[str], path_dim: str | None, fingerprint: str) -> dict:
+    """Task key -> [(point key, params)], one point per task or one load path per task."""
+    if path_dim is None:
+        return {key: [(key, params)] for key, params in zip(keys, points)}
+    if path_dim not in points[0]:
+        raise ValueError(f"path_dim {path_dim!r} is not a swept name")
+    paths: dict[str, list] = {}
+    for key, params in zip(keys, points):
+        rest = {k: v for k, v in params.items() if k != path_dim}
+        paths.setdefault(point_key(rest, f"{fingerprint}|path:{path_dim}"), []).append((key, params))
+    return {k: sorted(v, key=lambda kp: kp[1][path_dim]) for k, v in paths.items()}
 
 
 def combine(coords: Mapping[str, np.ndarray], results: list[dict], *, labels=None, attrs=None) -> xr.Dataset:

@@ -191,3 +191,28 @@ def test_fields_are_stacked_with_their_coordinates(tmp_path):
         assert back.pressure.encoding["zlib"] and back.pressure.encoding["chunksizes"] == (1, 1, 32, 32)
         xr.testing.assert_identical(back.load(), ds)
     assert contactlib.__version__ == ds.attrs["contactlib_version"]
+
+
+def test_load_paths_warm_start_and_resume_per_path(tmp_path, reference):
+    point = functools.partial(studies.area_load_point, **CONSTANTS)
+    kw = dict(labels=studies.STUDY_VARIABLES, fft_shapes=[(64, 64)], path_dim="reduced_pressure")
+    paths = sweep.run_grid(point, GRID, progress=False, **kw)
+    # the same physics as cold starts, to the solver tolerance, in fewer iterations
+    assert (paths.status == 0).all() and float(paths.residual.max()) <= CONSTANTS["tol"]
+    np.testing.assert_allclose(paths.mean_pressure, reference.mean_pressure, rtol=1e-12)
+    assert float(abs(paths.contact_area - reference.contact_area).max()) <= 2 / 64**2
+    assert int(paths.iterations.sum()) < int(reference.iterations.sum())
+    seen = []
+
+    def stop_after_first_path(line):
+        seen.append(line)
+        if len(seen) == 4:  # one path (3 loads) finished and checkpointed, the second under way
+            raise Interrupt
+
+    with pytest.raises(Interrupt):
+        sweep.run_grid(point, GRID, checkpoint_dir=tmp_path, progress=stop_after_first_path, **kw)
+    assert len(list(tmp_path.glob("*.pkl"))) == 2
+    counting = Counting(point)
+    resumed = sweep.run_grid(counting, GRID, checkpoint_dir=tmp_path, progress=False, **kw)
+    assert counting.calls == 12 - 6
+    xr.testing.assert_identical(strip(resumed), strip(paths))

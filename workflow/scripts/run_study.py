@@ -16,10 +16,13 @@ def main(sm):
             print(f"{spec['name']}: {line}", file=stream, flush=True)
 
     study = studies.STUDIES[spec["name"]]
+    solver = dict(solver)
+    path_dim = study.get("path_dim") if solver.pop("warm_start") else None
     constants = {**material, **solver, **spec["constants"]}
     if not dask["scheduler_address"]:  # a LocalCluster sized to the cores Snakemake gave this job
         dask["n_workers"] = max(1, min(dask["n_workers"], sm.threads // dask["threads_per_worker"]))
-    config = {"study": spec, "material": material, "solver": solver, "dask": dask}
+    config = {"study": spec, "material": material, "solver": {**solver, "warm_start": path_dim is not None},
+              "dask": dask}
     with sweep.open_client(**dask, log=emit) as client:
         ds = sweep.run_grid(
             functools.partial(study["point"], **constants),
@@ -34,6 +37,7 @@ def main(sm):
                    "length_scale": "1 m", "E": material["E"], "nu": material["nu"],
                    "E_star": material["E"] / (1 - material["nu"] ** 2)},
             progress=emit,
+            path_dim=path_dim,
         )
     sweep.write_netcdf(ds, sm.output[0], sweep_dims=spec["grid"])
     emit(f"wrote {sm.output[0]}: {dict(ds.sizes)}, {int((ds.status != 0).sum())} failed points")
