@@ -33,6 +33,8 @@ axes[1].set(xlabel="mean pressure / p* [1]", ylabel=f"{ds.westergaard_contact_fr
 err = ds.westergaard_pressure_error
 for cf in c.values:
     axes[2].loglog(ds.n, err.sel(contact_fraction=cf), "o-", label=f"{c.name}={cf:g}")
+axes[2].set_xticks(ds.n.values, [str(n) for n in ds.n.values], minor=False)
+axes[2].xaxis.set_minor_formatter(matplotlib.ticker.NullFormatter())
 axes[2].set(xlabel=f"{ds.n.long_name} [1]", ylabel=f"{err.long_name} [{err.units}]",
             title="Westergaard pressure, refinement")
 for ax in axes:
