@@ -1,7 +1,7 @@
 # contactlib parametric studies: `snakemake --cores 2` regenerates every dataset and figure.
 from snakemake.utils import min_version
 
-min_version("8.0")
+min_version("9.0")
 
 
 configfile: "workflow/config.yaml"
