@@ -56,20 +56,35 @@ class Compliance:
         self.work_shape = grid.shape if periodic else grid.padded().shape
         self.multiplier = _unit_multiplier(grid, kernel, self.periodic) / self.E_star
         self._block = tuple(slice(0, n) for n in grid.shape)
+        self._inverse = None
+
+    @property
+    def inverse_multiplier(self) -> np.ndarray:
+        """The continuous half-space stiffness ``E*|q|/2`` on the work grid (normalised); its zero
+        mode takes the lowest non-zero wavenumber's value so it stays definite."""
+        if self._inverse is None:
+            q = Grid(self.work_shape, self.grid.lengths if self.periodic else self.grid.padded().lengths).wavenumber()
+            q.flat[0] = q.flat[1] if q.size > 1 else 1.0
+            self._inverse = fft.convolution_multiplier(self.E_star * q / 2, self.work_shape)
+        return self._inverse
 
     def load(self) -> np.ndarray:
         """Writable view where the next input pressure goes (padding already zeroed)."""
         plan = fft.get_fft(self.work_shape)
-        if not self.periodic:
-            plan.real.fill(0.0)
+        if not self.periodic:  # zero the padding only: the block may hold the caller's input
+            n0 = self.grid.shape[0]
+            plan.real[n0:].fill(0.0)
+            if self.grid.dim == 2:
+                plan.real[:n0, self.grid.shape[1]:].fill(0.0)
         return plan.real[self._block]
 
-    def convolve(self) -> np.ndarray:
+    def convolve(self, *, inverse: bool = False) -> np.ndarray:
         """Convolve what :meth:`load` received; returns a view of the displacement (valid until
-        the next call on this shape in this thread)."""
+        the next call on this shape in this thread). ``inverse=True`` applies the approximate
+        inverse (:attr:`inverse_multiplier`) instead: a preconditioner."""
         plan = fft.get_fft(self.work_shape)
         spectrum = plan.forward()
-        spectrum *= self.multiplier
+        spectrum *= self.inverse_multiplier if inverse else self.multiplier
         return plan.inverse()[self._block]
 
     def __call__(self, pressure: np.ndarray, out: np.ndarray | None = None) -> np.ndarray:

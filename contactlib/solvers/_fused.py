@@ -40,8 +40,10 @@ def gap_and_contact_mean(u, hp, p, g):
 
 
 @_jit
-def shift_and_measure(g, p, approach):
-    """``g -= approach``; returns (sum p|g|, sum max(-g, 0), sum over contact of g^2, sum p)."""
+def shift_and_measure(g, p, approach, masked, write_masked):
+    """``g -= approach``; if ``write_masked``, ``masked = g`` on the contact set and 0 elsewhere.
+
+    Returns (sum p|g|, sum max(-g, 0) off contact, sum over contact of g^2, sum p)."""
     comp = 0.0
     pen = 0.0
     G = 0.0
@@ -55,20 +57,26 @@ def shift_and_measure(g, p, approach):
                 G += v * v
                 psum += pv
                 comp += pv * abs(v)
-            elif v < 0.0:
-                pen -= v
+                if write_masked:
+                    masked[i, j] = v
+            else:
+                if v < 0.0:
+                    pen -= v
+                if write_masked:
+                    masked[i, j] = 0.0
     return comp, pen, G, psum
 
 
 @_jit
-def conjugate_direction(g, p, beta, t, dest):
-    """``t = (g + beta t)`` on the contact set, 0 elsewhere; ``dest[...] = t``; returns (sum t, sum g t)."""
+def conjugate_direction(z, shift, g, p, beta, t, dest):
+    """``t = (z - shift + beta t)`` on the contact set, 0 elsewhere; ``dest[...] = t`` (``dest`` may
+    be ``z``: each element is read before it is written); returns (sum t, sum g t)."""
     st = 0.0
     gt = 0.0
     for i in range(g.shape[0]):
         for j in range(g.shape[1]):
             if p[i, j] > 0.0:
-                v = g[i, j] + beta * t[i, j]
+                v = z[i, j] - shift + beta * t[i, j]
                 st += v
                 gt += g[i, j] * v
             else:

@@ -6,7 +6,8 @@ current contact set, with projection onto ``p >= 0`` and re-entry of interpenetr
 the mean gap offset over the contact set; displacement control fixes the approach.
 
 Two convolutions per iteration (``K p`` and ``K t``), written and read in place in the FFT
-buffers; everything else is five fused sweeps (:mod:`._fused`). The centring of ``K t`` over
+buffers; everything else is five fused sweeps (:mod:`._fused`). With the Fourier
+preconditioner a third FFT pair and a sixth sweep are added. The centring of ``K t`` over
 the contact set enters only through ``sum_c (r - r_c) t = sum r t - r_c sum t``.
 """
 
@@ -27,6 +28,7 @@ def solve_polonsky_keer(
     tol: float = 1e-8,
     max_iter: int = 10_000,
     initial_pressure: np.ndarray | None = None,
+    precondition: bool = True,
 ) -> ContactState:
     """Solve for the contact pressure under load or displacement control.
 
@@ -44,8 +46,15 @@ def solve_polonsky_keer(
         Target of :func:`~contactlib.solvers.contact_residual`, evaluated every iteration.
     initial_pressure : ndarray, optional
         Warm start (e.g. the previous point of a load path).
+    precondition : bool
+        Precondition the search direction with the inverse half-space kernel ``E*|q|/2`` restricted
+        to the contact set (Vollebregt 2014, doi:10.1007/s10957-013-0515-0): one more FFT pair per
+        iteration, 3-6x fewer iterations on rough surfaces (benchmarks/). Load control only.
     """
     load_control = mean_pressure is not None
+    # the preconditioned direction needs the load constraint's centring: without it, projection
+    # and re-entry can undo the preconditioned steps (seen to diverge on a Hertz indentation)
+    precondition = precondition and load_control
     hp = fz.as2d(heights - heights.max())  # <= 0; gap = u - hp - penetration
     scale = height_scale(heights)
     n = heights.size
@@ -68,6 +77,7 @@ def solve_polonsky_keer(
 
     g = np.empty_like(p)
     t = np.zeros_like(p)
+    unused = np.empty((1, 1))
     G_old, restart = 1.0, True
     residual, approach = np.inf, float(penetration or 0.0)
     it = 0
@@ -77,13 +87,20 @@ def solve_polonsky_keer(
         n_contact, g_sum = fz.gap_and_contact_mean(u, hp, p, g)
         if load_control:
             approach = g_sum / n_contact
-        comp, pen, G, psum = fz.shift_and_measure(g, p, approach)
+        masked = fz.as2d(operator.load()) if precondition else unused
+        comp, pen, G, psum = fz.shift_and_measure(g, p, approach, masked, precondition)
         residual = (comp + psum * pen / n) / (psum * scale) if psum > 0 else pen / (n * scale)
         if residual <= tol or it == max_iter:
             break
+        if precondition:  # z = P g on the contact set, centred there under load control
+            z = fz.as2d(operator.convolve(inverse=True))
+            z_sum, G = fz.contact_sums(z, g, p)
+            z_shift = z_sum / n_contact if load_control else 0.0
+        else:
+            z, z_shift = g, 0.0
         beta = 0.0 if restart else G / G_old
         G_old = G
-        t_sum, gt = fz.conjugate_direction(g, p, beta, t, fz.as2d(operator.load()))
+        t_sum, gt = fz.conjugate_direction(z, z_shift, g, p, beta, t, fz.as2d(operator.load()))
         r = fz.as2d(operator.convolve())
         r_sum, rt = fz.contact_sums(r, t, p)
         if load_control:
@@ -99,7 +116,8 @@ def solve_polonsky_keer(
         else:
             factor = 1.0
 
-    displacement = np.array(u, copy=True).reshape(heights.shape)  # K p of the returned p
+    # the work buffers have been reused since K p was formed: one more convolution for the output
+    displacement = operator(p).reshape(heights.shape)
     return ContactState(
         pressure=p.reshape(heights.shape), gap=g.reshape(heights.shape), displacement=displacement,
         penetration=float(approach), mean_pressure=float(p.mean()), iterations=it, residual=float(residual),
