@@ -7,7 +7,8 @@ the mean gap offset over the contact set; displacement control fixes the approac
 
 Two convolutions per iteration (``K p`` and ``K t``), written and read in place in the FFT
 buffers; everything else is five fused sweeps (:mod:`._fused`). With the Fourier
-preconditioner a third FFT pair and a sixth sweep are added. The centring of ``K t`` over
+preconditioner a third FFT pair and a sixth sweep are added. Under load control the pressure is
+kept unnormalised and scaled to the load inside the sweeps. The centring of ``K t`` over
 the contact set enters only through ``sum_c (r - r_c) t = sum r t - r_c sum t``.
 """
 
@@ -73,6 +74,7 @@ def solve_polonsky_keer(
             return _zero_state(heights, penetration=float(penetration))
         p = interference / self_compliance if initial_pressure is None else \
             fz.as2d(np.maximum(initial_pressure, 0.0)).copy()
+    # the pressure is ``factor * p``: load control rescales it to the load lazily, inside the sweeps
     factor = mean_pressure * n / p.sum() if load_control else 1.0
 
     g = np.empty_like(p)
@@ -80,15 +82,15 @@ def solve_polonsky_keer(
     unused = np.empty((1, 1))
     G_old, restart = 1.0, True
     residual, approach = np.inf, float(penetration or 0.0)
+    fz.as2d(operator.load())[...] = p
     it = 0
     for it in range(max_iter + 1):
-        fz.scale_and_load(p, factor, fz.as2d(operator.load()))
         u = fz.as2d(operator.convolve())
-        n_contact, g_sum = fz.gap_and_contact_mean(u, hp, p, g)
+        n_contact, g_sum = fz.gap_and_contact_mean(u, factor, hp, p, g)
         if load_control:
             approach = g_sum / n_contact
         masked = fz.as2d(operator.load()) if precondition else unused
-        comp, pen, G, psum = fz.shift_and_measure(g, p, approach, masked, precondition)
+        comp, pen, G, psum = fz.shift_and_measure(g, p, factor, approach, masked, precondition)
         residual = (comp + psum * pen / n) / (psum * scale) if psum > 0 else pen / (n * scale)
         if residual <= tol or it == max_iter:
             break
@@ -106,15 +108,15 @@ def solve_polonsky_keer(
         if load_control:
             rt -= r_sum / n_contact * t_sum
         tau = gt / rt if rt > 0 else 1.0 / self_compliance
-        psum, n_overlap = fz.step_project_reenter(p, t, g, tau)
+        psum, n_overlap = fz.step_project_reenter(p, factor, t, g, tau, fz.as2d(operator.load()))
         restart = n_overlap > 0
         if load_control:
             if psum <= 0:  # lost every point: restart from the highest point
                 p[...] = np.where(hp == 0.0, 1.0, 0.0)
                 psum = p.sum()
+                fz.as2d(operator.load())[...] = p
             factor = mean_pressure * n / psum
-        else:
-            factor = 1.0
+    p *= factor
 
     # the work buffers have been reused since K p was formed: one more convolution for the output
     displacement = operator(p).reshape(heights.shape)
