@@ -53,6 +53,9 @@ def export_wisdom() -> tuple[bytes, ...]:
 
 
 def import_wisdom(wisdom: tuple[bytes, ...]) -> None:
+    """Import FFTW wisdom (e.g. a parent's :func:`export_wisdom`) on top of the on-disk cache,
+    which is read first so that the given plans are the last word."""
+    _load_wisdom_once()
     pyfftw.import_wisdom(wisdom)
 
 
