@@ -20,3 +20,4 @@ rule all:
     input:
         expand("results/{study}.nc", study=STUDIES),
         expand("results/figures/{study}.png", study=STUDIES),
+        TABLES,

@@ -1,12 +1,13 @@
 """contactlib: rough-surface contact mechanics with FFT boundary elements.
 
 The public API: :func:`solve` for frictionless normal contact, :mod:`contactlib.surfaces` to
-generate surfaces, :mod:`contactlib.analysis` to measure them and their contact fields.
+generate surfaces, :mod:`contactlib.analysis` to measure them and their contact fields, :mod:`contactlib.accuracy` for the
+measured grid and tolerance rules (``solve(..., target_error=...)``).
 """
 
-from . import analysis, reference, surfaces
+from . import accuracy, analysis, reference, surfaces
 from ._version import __version__
 from .contact import ConvergenceError, solve
 from .grid import Grid
 
-__all__ = ["solve", "ConvergenceError", "Grid", "surfaces", "analysis", "reference", "__version__"]
+__all__ = ["solve", "ConvergenceError", "Grid", "surfaces", "analysis", "reference", "accuracy", "__version__"]

@@ -8,6 +8,7 @@ import time
 import numpy as np
 import xarray as xr
 
+from . import accuracy
 from ._version import __version__
 from .grid import Grid
 from .labels import attrs_for
@@ -97,7 +98,7 @@ def solve(
     mean_pressure: float | None = None,
     penetration: float | None = None,
     periodic: bool = True,
-    tol: float = 1e-8,
+    tol: float | None = None,
     max_iter: int = 10_000,
     kernel: str = "spectral",
     method: str = "cg",
@@ -105,6 +106,7 @@ def solve(
     initial_pressure=None,
     length_unit: str = "m",
     pressure_unit: str = "Pa",
+    target_error: float | None = None,
 ) -> xr.Dataset:
     """Frictionless normal contact of a rigid rough surface on an elastic half-space.
 
@@ -125,8 +127,9 @@ def solve(
         the load and is refused.
     periodic : bool
         Periodic window (default) or an isolated footprint (zero padding, free boundary).
-    tol : float
-        Target of the scale-free residual (:func:`contactlib.solvers.contact_residual`).
+    tol : float, optional
+        Target of the scale-free residual (:func:`contactlib.solvers.contact_residual`); default
+        1e-8, or the rule of ``target_error``.
     max_iter : int
         Iteration bound; beyond it :class:`ConvergenceError` is raised with the partial state.
     kernel : {"spectral", "love"}
@@ -140,6 +143,14 @@ def solve(
         Warm start for ``method="cg"``.
     length_unit, pressure_unit : str
         udunits strings written to the output's ``units`` attributes.
+    target_error : float, optional
+        Relative error in (0, 1) wanted on the contact area (the slowest quantity to converge):
+        picks ``tol`` by :func:`contactlib.accuracy.tolerance_for` (give ``tol`` or ``target_error``,
+        not both) and, for a periodic surface, warns with :class:`contactlib.accuracy.AccuracyWarning`
+        when the grid has fewer points per shortest wavelength than
+        :func:`contactlib.accuracy.points_per_wavelength` asks (the grid is the caller's: refine
+        the surface with :func:`contactlib.surfaces.resample` or generate it at
+        :func:`contactlib.accuracy.settings_for`'s ``n``). Recorded in ``attrs``.
 
     Returns
     -------
@@ -158,6 +169,13 @@ def solve(
     values, grid, dims, coords = grid_of(heights, length)
     E_star = contact_modulus(E, nu)
     _check_loads(mean_pressure, penetration)
+    if target_error is not None:
+        if tol is not None:
+            raise ValueError("give tol or target_error, not both")
+        tol = accuracy.tolerance_for(target_error)
+        if periodic:
+            accuracy.check_resolution(values, target_error, length=grid.lengths)
+    tol = 1e-8 if tol is None else tol
     if not (isinstance(tol, (int, float)) and math.isfinite(tol) and tol > 0):
         raise ValueError(f"tol must be finite and > 0, got {tol!r}")
     if int(max_iter) < 1:
@@ -194,6 +212,8 @@ def solve(
         "converged": int(state.converged), "wall_time": wall, "contactlib_version": __version__,
         "window_lengths": list(grid.lengths),
     })
+    if target_error is not None:
+        ds.attrs["target_error"] = float(target_error)
     if not periodic and _touches_edge(state.pressure):
         raise ValueError(
             "periodic=False: the contact reaches the edge of the window, so the surface outside it would "

@@ -7,15 +7,17 @@ name to its point function, the FFT shapes it plans, and the labels of its outpu
 
 from __future__ import annotations
 
+import functools
 import inspect
 import itertools
 import math
+import time
 
 import numpy as np
 import xarray as xr
 
 from . import analysis, surfaces
-from .contact import solve
+from .contact import ConvergenceError, solve
 from .materials import contact_modulus
 from .reference import hertz, westergaard
 from .sweep import SWEEP_VARIABLES
@@ -50,6 +52,17 @@ STUDY_VARIABLES: dict[str, dict[str, str]] = {
     "pressure_gamma": {"units": "1", "long_name": "anisotropy ratio gamma of the contact pressure"},
     "pressure_theta_d": {"units": "rad", "long_name": "principal direction theta_d of the contact pressure"},
     "pressure": {"units": "Pa", "long_name": "contact pressure (compressive positive)"},
+    "scene": {"units": "1", "long_name": "test scene (hertz, westergaard_1d, wavy_2d, rough)"},
+    "tol": {"units": "1", "long_name": "solver tolerance on the scale-free residual"},
+    "kernel": {"units": "1", "long_name": "compliance kernel (spectral, love)"},
+    "load_error": {"units": "1", "long_name": "relative error of the total load"},
+    "area_error": {"units": "1", "long_name": "relative error of the contact area"},
+    "pressure_error": {"units": "1", "long_name": "relative L2 error of the pressure field"},
+    "gap_error": {"units": "1", "long_name": "relative error of the mean gap (mean-plane separation)"},
+    "max_error": {"units": "1", "long_name": "largest relative error of the scene's defined quantities"},
+    "solve_time": {"units": "s", "long_name": "wall-clock time of contactlib.solve alone"},
+    "reference_residual": {"units": "1", "long_name": "residual reached by the rough reference solve"},
+    "resolution": {"units": "1", "long_name": "grid points per characteristic length (rough: per shortest wavelength)"},
     "x": {"units": "m", "long_name": "position along x"},
     "y": {"units": "m", "long_name": "position along y"},
 }
@@ -143,6 +156,172 @@ def anisotropy_point(*, anisotropy: float, seed: int, n: int, hurst: float, angl
     return result
 
 
+SCENES = ("hertz", "westergaard_1d", "wavy_2d", "rough")
+"""Scenes of :func:`speed_error_point`; all but ``westergaard_1d`` are 2D."""
+
+
+def _timed_solve(h, **kw) -> tuple[xr.Dataset, float]:
+    """``solve`` timed alone, after an untimed one-iteration call has built (and cached) the kernel
+    and planned the FFTs of this grid, so ``solve_time`` is the solve and not the set-up."""
+    try:
+        solve(h, **{**kw, "max_iter": 1, "tol": 0.5})
+    except ConvergenceError:
+        pass
+    start = time.perf_counter()
+    out = solve(h, **kw)
+    return out, time.perf_counter() - start
+
+
+def _l2(p, exact) -> float:
+    return float(np.linalg.norm(np.asarray(p) - exact) / np.linalg.norm(exact))
+
+
+def _rel(value, exact) -> float:
+    return abs(float(value) / float(exact) - 1.0)
+
+
+def rough_master(*, hurst: float, seed: int, q_low: float, q_roll: float, q_cutoff: float, rms_slope: float):
+    """The one continuous surface of the ``rough`` scene: synthesised on the smallest power-of-two grid
+    with ``n >= 4 q_cutoff``; every resolution samples its trigonometric interpolant
+    (:func:`contactlib.surfaces.resample`), so all grids resolve the same modes."""
+    n0 = 2 ** math.ceil(math.log2(4 * q_cutoff))
+    return surfaces.self_affine(n0, length=1.0, hurst=hurst, q_low=q_low, q_roll=q_roll, q_cutoff=q_cutoff,
+                                rms_slope=rms_slope, seed=seed)
+
+
+REFERENCE_FLOOR = 10.0
+"""A rough reference whose residual stalls within this factor of its tolerance is accepted (round-off)."""
+REFERENCE_MAX_ITER = 120
+"""Iteration bound of the rough reference solve (it converges in 30-50 iterations when it can)."""
+
+
+@functools.lru_cache(maxsize=4)
+def rough_reference(*, n: int, factor: int, tol: float, hurst: float, seed: int, q_low: float, q_roll: float,
+                    q_cutoff: float, rms_slope: float, reduced_pressure: float, E: float, nu: float,
+                    max_iter: int) -> dict:
+    """Reference of the ``rough`` scene at ``n``: the same surface on a ``factor`` x finer grid, spectral
+    kernel, ``tol``; cached per process (the points of one task share it). The fine pressure is
+    restricted (injected) onto the coarse nodes, which coincide with every ``factor``-th fine node.
+
+    ``tol = 1e-12`` sits at the round-off floor of the residual on large grids (it stalls near
+    1.2e-12 on 2048^2): the reference is accepted, unconverged, once its residual is within
+    ``REFERENCE_FLOOR * tol``, after ``max_iter`` iterations (:data:`REFERENCE_MAX_ITER` in the study)."""
+    master = rough_master(hurst=hurst, seed=seed, q_low=q_low, q_roll=q_roll, q_cutoff=q_cutoff, rms_slope=rms_slope)
+    fine = surfaces.resample(master, factor * n)
+    load = reduced_pressure * contact_modulus(E, nu) * rms_slope
+    try:
+        out = solve(fine, E=E, nu=nu, mean_pressure=load, tol=tol, max_iter=max_iter, kernel="spectral")
+    except ConvergenceError as err:  # round-off floor: ~1e-12 is not always reachable on 2048^2 and up
+        if not err.residual <= REFERENCE_FLOOR * tol:
+            raise
+        out = err.dataset
+    return {"contact_area": float(out.contact_area), "mean_gap": float(out.gap.mean()),
+            "pressure": out.pressure.values[::factor, ::factor].copy(), "residual": float(out.residual)}
+
+
+def speed_error_point(*, scene: str, n: int, tol: float, kernel: str, E: float, nu: float, max_iter: int,
+                      radius: float, contact_fraction: float, amplitude: float, full_contact_margin: float,
+                      hurst: float, seed: int, q_low: float, q_roll: float, q_cutoff: float, rms_slope: float,
+                      reduced_pressure: float, n_max_2d: int, n_max_rough: int, reference_factor: int = 4,
+                      reference_tol: float = 1e-12) -> dict:
+    """Errors and wall time of one solve of a scene with a known answer, at grid ``n``, ``tol``, ``kernel``.
+
+    Scenes (window L = 1; relative errors; NaN where a quantity is prescribed or undefined):
+
+    * ``hertz``: sphere of ``radius`` on a non-periodic window under displacement control at the Hertz
+      approach ``a^2/R`` of contact radius ``a = contact_fraction L / 4``: errors of the total load, the
+      contact area (against ``pi a^2``) and the pressure field, all against Hertz.
+    * ``westergaard_1d``: profile ``amplitude cos(2 pi x)`` in partial contact, load control at the
+      Westergaard mean pressure of contact fraction ``contact_fraction``: contact fraction and pressure
+      field against :mod:`contactlib.reference.westergaard`.
+    * ``wavy_2d``: egg-box ``amplitude cos(2 pi x) cos(2 pi y)`` in full contact, load control at
+      ``full_contact_margin`` times the full-contact threshold ``E* |q| amplitude / 2``: pressure field
+      against :func:`contactlib.reference.westergaard.full_contact_field` (area is 1, load prescribed).
+    * ``rough``: the self-affine surface of :func:`rough_master` (``hurst``, ``seed``, band edges,
+      ``rms_slope``), load control at ``reduced_pressure * E* * rms_slope``, against
+      :func:`rough_reference` (the same continuous surface on a ``reference_factor`` x finer grid,
+      spectral kernel, ``reference_tol``): contact area, mean gap, and the pressure field against the
+      fine pressure restricted to the coarse nodes (injection, not averaging).
+
+    2D scenes refuse ``n > n_max_2d`` and ``rough`` refuses ``n > n_max_rough`` or ``n <= 2 q_cutoff``
+    (``ValueError``: the sweep records status 2 and NaN), so one ``n`` axis serves 1D grids up to 65536
+    and 2D grids up to a few thousand, and the 4x finer rough reference stays within memory.
+
+    ``resolution`` is the number of grid points per characteristic length: the shortest wavelength
+    ``L / q_cutoff`` (rough), the contact radius (hertz), the contact half-width (westergaard_1d), the
+    wavelength (wavy_2d). Errors against it give the convergence orders of :mod:`contactlib.accuracy`.
+
+    Returns
+    -------
+    dict
+        ``load_error``, ``area_error``, ``pressure_error``, ``gap_error``, ``max_error`` (the largest
+        defined one), ``solve_time`` (``contactlib.solve`` alone, kernel set-up excluded),
+        ``iterations``, ``residual``, ``resolution``, ``reference_residual`` (rough only).
+    """
+    if scene not in SCENES:
+        raise ValueError(f"scene must be one of {SCENES}, got {scene!r}")
+    if scene != "westergaard_1d" and n > n_max_2d:
+        raise ValueError(f"n={n} is above n_max_2d={n_max_2d} for the 2D scene {scene!r}")
+    if scene == "rough" and not 2 * q_cutoff < n <= n_max_rough:
+        raise ValueError(f"rough: n={n} outside (2 q_cutoff, n_max_rough] = ({2 * q_cutoff:g}, {n_max_rough}]")
+    E_star = contact_modulus(E, nu)
+    kw = {"E": E, "nu": nu, "tol": tol, "max_iter": max_iter, "kernel": kernel}
+    errors = dict.fromkeys(("load_error", "area_error", "pressure_error", "gap_error"), math.nan)
+    if scene == "hertz":
+        a = contact_fraction / 4.0
+        depth = a * a / radius
+        out, wall = _timed_solve(surfaces.paraboloid(n, length=1.0, radius=radius), penetration=depth,
+                                 periodic=False, **kw)
+        load = hertz.sphere_load(depth, radius=radius, E_star=E_star)
+        x = out.x.values - 0.5
+        r = np.hypot(x[:, None], x[None, :])
+        errors["load_error"] = _rel(out.mean_pressure, load)
+        errors["area_error"] = _rel(out.contact_area, math.pi * a * a)
+        errors["pressure_error"] = _l2(out.pressure, hertz.sphere_pressure(r, load=load, radius=radius, E_star=E_star))
+    elif scene == "westergaard_1d":
+        p_mean = float(westergaard.mean_pressure(contact_fraction, amplitude=amplitude, wavelength=1.0, E_star=E_star))
+        out, wall = _timed_solve(surfaces.wavy(n, length=1.0, amplitude=amplitude, dim=1), mean_pressure=p_mean, **kw)
+        exact = westergaard.partial_contact_pressure(out.x.values, mean_pressure=p_mean, amplitude=amplitude,
+                                                     wavelength=1.0, E_star=E_star)
+        errors["area_error"] = _rel(out.contact_area, contact_fraction)
+        errors["pressure_error"] = _l2(out.pressure, exact)
+    elif scene == "wavy_2d":
+        p_mean = full_contact_margin * E_star * 2 * math.pi * math.sqrt(2) * amplitude / 2
+        out, wall = _timed_solve(surfaces.wavy(n, length=1.0, amplitude=amplitude, dim=2), mean_pressure=p_mean, **kw)
+        x = out.x.values
+        exact = westergaard.full_contact_field(x[:, None], x[None, :], mean_pressure=p_mean, amplitude=amplitude,
+                                               wavelength=1.0, E_star=E_star)
+        errors["pressure_error"] = _l2(out.pressure, exact)
+    else:
+        spectrum = {"hurst": hurst, "seed": seed, "q_low": q_low, "q_roll": q_roll, "q_cutoff": q_cutoff,
+                    "rms_slope": rms_slope}
+        ref = rough_reference(n=n, factor=reference_factor, tol=reference_tol, reduced_pressure=reduced_pressure,
+                              E=E, nu=nu, max_iter=min(max_iter, REFERENCE_MAX_ITER), **spectrum)
+        h = surfaces.resample(rough_master(**spectrum), n)
+        out, wall = _timed_solve(h, mean_pressure=reduced_pressure * E_star * rms_slope, **kw)
+        errors["area_error"] = _rel(out.contact_area, ref["contact_area"])
+        errors["gap_error"] = _rel(out.gap.mean(), ref["mean_gap"])
+        errors["pressure_error"] = _l2(out.pressure, ref["pressure"])
+    defined = [v for v in errors.values() if not math.isnan(v)]
+    length = {"hertz": contact_fraction / 4, "westergaard_1d": contact_fraction / 2, "wavy_2d": 1.0,
+              "rough": 1.0 / q_cutoff}[scene]
+    return {**errors, "max_error": max(defined), "solve_time": wall, "iterations": float(out.iterations),
+            "residual": float(out.residual), "resolution": n * length,
+            "reference_residual": ref["residual"] if scene == "rough" else math.nan}
+
+
+def speed_error_shapes(grid: dict, constants: dict) -> list[tuple[int, ...]]:
+    """FFT shapes of the speed_vs_error study (2D scenes up to ``n_max_2d``, padded for Hertz)."""
+    shapes = []
+    for n in grid["n"]:
+        shapes.append((n,))
+        if n <= constants["n_max_2d"]:
+            shapes += [(n, n), (2 * n, 2 * n)]
+        if 2 * constants["q_cutoff"] < n <= min(constants["n_max_2d"], constants["n_max_rough"]):
+            shapes.append((constants.get("reference_factor", 4) * n,) * 2)
+    return shapes
+
+
 STUDIES = {
     "validation": {"point": validation_point,
                    "fft_shapes": lambda grid, c: [s for n in grid["n"] for s in ((2 * n, 2 * n), (n,))]},
@@ -150,6 +329,8 @@ STUDIES = {
                   "path_dim": "reduced_pressure"},
     "anisotropy": {"point": anisotropy_point, "fft_shapes": lambda grid, c: [(c["n"], c["n"])]},
 }
+STUDIES["speed_vs_error"] = {"point": speed_error_point, "fft_shapes": speed_error_shapes,
+                              "group_dims": ("kernel", "tol")}
 STUDIES["area_load"]["surface_keys"] = ("hurst", "seed")
 STUDIES["anisotropy"]["surface_keys"] = ("anisotropy", "seed")
 

@@ -184,6 +184,7 @@ def run_grid(
     attrs: Mapping | None = None,
     progress: bool | Callable[[str], None] = True,
     path_dim: str | None = None,
+    group_dims: Iterable[str] = (),
 ) -> xr.Dataset:
     """Evaluate ``point_fn(**point)`` at every point of ``grid`` and combine into one Dataset.
 
@@ -215,6 +216,11 @@ def run_grid(
         its points in increasing ``path_dim``, each warm-started from the previous converged point
         (``point_fn`` must accept ``initial_pressure`` and return ``_warm_start``). Checkpoints are
         then per path. Without it, one task and one checkpoint per point.
+    group_dims : iterable of str, optional
+        Swept names whose points share one task (run in order, no warm start): the points that differ
+        only in these names run in one process, one after another, so an in-process cache (e.g. a
+        reference solution shared by every tolerance and kernel) is computed once per task.
+        Checkpoints are then per group. Not together with ``path_dim``.
 
     Returns
     -------
@@ -234,7 +240,11 @@ def run_grid(
     keys = [point_key(p, fingerprint) for p in points]
     if len(set(keys)) != len(keys):
         raise ValueError("grid: duplicate points")
-    tasks = _tasks(points, keys, path_dim, fingerprint)
+    group_dims = tuple(group_dims)
+    if path_dim is not None and group_dims:
+        raise ValueError("give path_dim or group_dims, not both")
+    tasks = _tasks(points, keys, path_dim, fingerprint) if not group_dims else _groups(points, keys, group_dims,
+                                                                                        fingerprint)
     checkpoint_dir = None if checkpoint_dir is None else Path(checkpoint_dir)
     report = Progress(len(points), progress)
     results: dict[str, dict] = {}
@@ -286,6 +296,18 @@ def _tasks(points: list[dict], keys: list[str], path_dim: str | None, fingerprin
         rest = {k: v for k, v in params.items() if k != path_dim}
         paths.setdefault(point_key(rest, f"{fingerprint}|path:{path_dim}"), []).append((key, params))
     return {k: sorted(v, key=lambda kp: kp[1][path_dim]) for k, v in paths.items()}
+
+
+def _groups(points: list[dict], keys: list[str], group_dims: tuple[str, ...], fingerprint: str) -> dict:
+    """Task key -> [(point key, params)], one task per combination of the names not in ``group_dims``."""
+    missing = [d for d in group_dims if d not in points[0]]
+    if missing:
+        raise ValueError(f"group_dims {missing} are not swept names")
+    groups: dict[str, list] = {}
+    for key, params in zip(keys, points):
+        rest = {k: v for k, v in params.items() if k not in group_dims}
+        groups.setdefault(point_key(rest, f"{fingerprint}|group:{','.join(group_dims)}"), []).append((key, params))
+    return groups
 
 
 def combine(coords: Mapping[str, np.ndarray], results: list[dict], *, labels=None, attrs=None) -> xr.Dataset:

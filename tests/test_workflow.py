@@ -37,6 +37,7 @@ def test_lint_and_dry_runs(workdir):
         dry = snakemake(workdir, "-n", *extra)
         assert dry.returncode == 0, dry.stderr
         assert "run_study" in dry.stdout and "plot_area_load" in dry.stdout
+        assert "plot_speed_vs_error" in dry.stdout and "tabulate_speed_vs_error" in dry.stdout
 
 
 @pytest.mark.parametrize("path, value, message", [
@@ -79,7 +80,18 @@ def test_tiny_end_to_end_run_and_report(workdir):
         assert float(abs(ratio.sel(n=64) - 1).max()) < 0.05
     with xr.open_dataset(results / "surfaces" / "anisotropy.nc") as ds:
         assert ds.height.dims == ("anisotropy", "seed", "x", "y") and ds.height.attrs["units"] == "m"
-    for study in ("validation", "area_load", "anisotropy"):
+    with xr.open_dataset(results / "speed_vs_error.nc") as ds:
+        assert dict(ds.sizes) == {"scene": 4, "n": 2, "tol": 2, "kernel": 2}
+        assert (ds.status == 0).all()
+        for name in list(ds.data_vars) + list(ds.coords):
+            assert ds[name].attrs.get("units") and ds[name].attrs.get("long_name"), name
+        assert (ds.solve_time > 0).all() and (ds.max_error.sel(scene="rough") > 0).all()
+        assert float(ds.pressure_error.sel(scene="wavy_2d", kernel="spectral").max()) < 1e-12  # exact: one mode
+        hertz = ds.load_error.sel(scene="hertz", tol=1e-10, kernel="spectral")  # first order: halves
+        assert 0.4 < float(hertz.sel(n=64) / hertz.sel(n=32)) < 0.8
+    table = (results / "speed_vs_error_table.md").read_text()
+    assert "| 1.00% | wavy_2d |" in table and "Convergence orders" in table
+    for study in ("validation", "area_load", "anisotropy", "speed_vs_error"):
         assert (results / "figures" / f"{study}.png").stat().st_size > 10_000
     assert not list(results.glob(".*.tmp"))
     report = snakemake(workdir, "--configfile", "tiny.yaml", "--report", "results/report.html", timeout=300)

@@ -9,6 +9,7 @@ validate(config, schema="../schemas/config.schema.yaml")
 
 STUDIES = list(config["studies"])
 SURFACE_STUDIES = [s for s in STUDIES if "surface_keys" in studies.STUDIES[s]]
+TABLES = [f"results/{s}_table.md" for s in STUDIES if s in config.get("tables", {})]
 
 
 wildcard_constraints:

@@ -49,3 +49,35 @@ rule plot_anisotropy:
         "../envs/contactlib.yaml"
     script:
         "../scripts/plot_anisotropy.py"
+
+
+rule plot_speed_vs_error:
+    input:
+        data="results/speed_vs_error.nc",
+    output:
+        report(
+            "results/figures/speed_vs_error.png",
+            caption="../report/speed_vs_error.rst",
+            category="Accuracy",
+        ),
+    log:
+        "logs/plot/speed_vs_error.log",
+    conda:
+        "../envs/contactlib.yaml"
+    script:
+        "../scripts/plot_speed_vs_error.py"
+
+
+rule tabulate_speed_vs_error:
+    input:
+        data="results/speed_vs_error.nc",
+    output:
+        "results/speed_vs_error_table.md",
+    params:
+        targets=lookup(dpath="tables/speed_vs_error/targets", within=config),
+    log:
+        "logs/tabulate/speed_vs_error.log",
+    conda:
+        "../envs/contactlib.yaml"
+    script:
+        "../scripts/tabulate_speed_vs_error.py"

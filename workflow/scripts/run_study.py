@@ -38,6 +38,7 @@ def main(sm):
                    "E_star": material["E"] / (1 - material["nu"] ** 2)},
             progress=emit,
             path_dim=path_dim,
+            group_dims=study.get("group_dims", ()),
         )
     sweep.write_netcdf(ds, sm.output[0], sweep_dims=spec["grid"])
     emit(f"wrote {sm.output[0]}: {dict(ds.sizes)}, {int((ds.status != 0).sum())} failed points")

@@ -1,0 +1,267 @@
+"""Accuracy against cost: the measured resolution and tolerance rules, and the analysis behind them.
+
+The ``speed_vs_error`` study (:func:`contactlib.studies.speed_error_point`, ``snakemake --cores 2``)
+solves scenes with known answers over grid size, solver tolerance and kernel. Two rules follow from
+it and are used here:
+
+* **Resolution.** On a self-affine surface the contact area converges at first order in the grid
+  spacing: ``error = C * ppw**-p`` with ``ppw = n / q_cutoff`` the grid points per shortest
+  wavelength (:data:`ROUGH_FITS`, p = 1.0). So ``ppw = (C / target) ** (1 / p)``: about 120 points
+  per shortest wavelength for 1 % on the contact area (61 without the safety factor 2).
+* **Tolerance.** The residual of :func:`contactlib.solve` bounds how far the solution is from
+  converged; the study gives the largest change of any error quantity that a tolerance causes
+  (against the smallest tolerance on the same grid) as ``<= TOLERANCE_GAIN * tol``
+  (:data:`TOLERANCE_GAIN`). So ``tol = target / (10 * TOLERANCE_GAIN)`` keeps the solver's share of
+  the error below a tenth of the target.
+
+:func:`settings_for` returns both, :func:`points_per_wavelength` and :func:`tolerance_for` each,
+and ``contactlib.solve(..., target_error=...)`` uses them (it picks ``tol`` and warns with
+:class:`AccuracyWarning` when the grid is coarser than the rule asks).
+"""
+
+from __future__ import annotations
+
+import math
+import warnings
+
+import numpy as np
+import xarray as xr
+
+REFERENCE_FACTOR = 4
+"""The rough references of the study are this much finer: with ``error = C ppw**-p`` against the
+continuum, the measured error against the reference is ``C (1 - 4**-p) ppw**-p``."""
+
+SAFETY = 2.0
+"""Factor on the fitted constants. The fit is one surface (seed 0, H = 0.8, q_cutoff 8, reduced
+pressure 0.05); on six other surfaces (seeds 2, 3, 5, 7, 9, 11; H 0.3-0.8; q_cutoff 4-8; reduced
+pressure 0.02-0.1) the contact-area error at the fitted resolution was up to 1.43x the fit (lower
+loads, smaller contact patches, are worse). Validity: reduced pressure >= 0.02."""
+
+
+def _fit(order: float, measured_constant: float) -> dict:
+    return {"order": order, "measured_constant": measured_constant,
+            "constant": SAFETY * measured_constant / (1 - REFERENCE_FACTOR**-order)}
+
+
+ROUGH_FITS = {
+    "contact_area": _fit(0.9954, 0.4558),
+    "pressure": _fit(0.9722, 0.2657),
+}
+"""Measured ``error = constant * ppw**-order`` of the rough scene, spectral kernel, tol 1e-12.
+
+Measurement: ``snakemake --cores 2 results/speed_vs_error_table.md`` (quick scale: self-affine surface,
+H = 0.8, q_low 1, q_roll 2, q_cutoff 8, rms slope 0.1, seed 0, reduced pressure 0.05; n = 32-512, i.e.
+4-64 points per shortest wavelength; reference 4x finer at tol 1e-12), 2026-11-21, contactlib 0.1.0.
+Fitted (:func:`convergence_orders`): contact area order 0.995, constant 0.456; pressure (relative
+L2) order 0.972, constant 0.266. ``constant`` is the measured one corrected for the 4x reference
+(:data:`REFERENCE_FACTOR`) and multiplied by :data:`SAFETY`. The Love kernel measured 0.992 / 0.386
+(area): slightly smaller errors at the same cost. Rerunning the study reproduces these numbers (wall
+times aside) in ``results/speed_vs_error_table.md``."""
+
+TOLERANCE_GAIN = 166.0
+"""Largest ``|error(tol) - error(1e-12)| / tol`` over every scene, grid, kernel, tolerance and error
+quantity of the same quick-scale run (:func:`tolerance_gain`; 166 at tol 1e-4 on the Hertz contact
+area, whose node count is the most sensitive to a loose tolerance; at most 65 for tol <= 1e-6)."""
+
+QUANTITIES = ("load_error", "area_error", "pressure_error", "gap_error")
+"""Error variables of a ``speed_vs_error`` dataset."""
+
+
+class AccuracyWarning(UserWarning):
+    """The grid is coarser than the resolution rule asks for the requested ``target_error``."""
+
+
+# --- the rule ------------------------------------------------------------------------------------
+
+
+def points_per_wavelength(target_error: float, *, quantity: str = "contact_area") -> float:
+    """Grid points per shortest wavelength for a relative error ``target_error`` of ``quantity``.
+
+    ``quantity="contact_area"`` (the slowest to converge of the measured ones) or ``"pressure"``
+    (relative L2 error of the pressure field). Uses the fits of :data:`ROUGH_FITS`.
+
+    Examples
+    --------
+    >>> from contactlib import accuracy
+    >>> accuracy.points_per_wavelength(0.1) < accuracy.points_per_wavelength(0.01)
+    True
+    """
+    _check_target(target_error)
+    if quantity not in ROUGH_FITS:
+        raise ValueError(f"quantity must be one of {tuple(ROUGH_FITS)}, got {quantity!r}")
+    fit = ROUGH_FITS[quantity]
+    return float((fit["constant"] / target_error) ** (1.0 / fit["order"]))
+
+
+def tolerance_for(target_error: float) -> float:
+    """Solver tolerance whose share of the error stays below ``target_error / 10``."""
+    _check_target(target_error)
+    return float(min(1e-4, target_error / (10.0 * TOLERANCE_GAIN)))
+
+
+def settings_for(target_error: float, *, quantity: str = "contact_area", q_cutoff: float | None = None) -> dict:
+    """Grid and tolerance for a self-affine surface and a target relative error.
+
+    Parameters
+    ----------
+    target_error : float
+        Relative error in (0, 1) of ``quantity``.
+    quantity : {"contact_area", "pressure"}
+    q_cutoff : float, optional
+        Short-wavelength cutoff of the surface [2 pi / L]; gives ``n``, the smallest power of two with
+        at least ``points_per_wavelength * q_cutoff`` points per side.
+
+    Returns
+    -------
+    dict
+        ``points_per_wavelength``, ``tol``, ``kernel`` and, with ``q_cutoff``, ``n``.
+
+    Examples
+    --------
+    >>> from contactlib import accuracy
+    >>> s = accuracy.settings_for(0.05, q_cutoff=8)
+    >>> s["n"] >= s["points_per_wavelength"] * 8
+    True
+    """
+    ppw = points_per_wavelength(target_error, quantity=quantity)
+    out = {"points_per_wavelength": ppw, "tol": tolerance_for(target_error), "kernel": "spectral"}
+    if q_cutoff is not None:
+        if not q_cutoff > 0:
+            raise ValueError(f"q_cutoff must be > 0, got {q_cutoff!r}")
+        out["n"] = int(2 ** math.ceil(math.log2(max(ppw * q_cutoff, 2 * q_cutoff + 1))))
+    return out
+
+
+def grid_points_per_wavelength(heights, *, length=None, floor: float = 1e-10) -> float:
+    """Grid points per shortest wavelength present in a periodic surface.
+
+    The shortest wavelength is ``2 pi / q_max``, with ``q_max`` the largest wavenumber carrying more
+    than ``floor`` of the largest mode's power; it is divided by the coarser grid spacing. ``length``
+    is the window size (default: a DataArray's coordinates, else 1). ``inf`` for a flat surface.
+
+    Examples
+    --------
+    >>> import contactlib
+    >>> h = contactlib.surfaces.self_affine(64, hurst=0.8, q_roll=2, q_cutoff=8, rms_slope=0.1, seed=0)
+    >>> contactlib.accuracy.grid_points_per_wavelength(h)
+    8.0
+    """
+    values = np.asarray(getattr(heights, "values", heights), dtype=float)
+    if length is None and isinstance(heights, xr.DataArray):
+        length = [float(heights[d][1] - heights[d][0]) * heights.sizes[d] for d in heights.dims]
+    lengths = np.broadcast_to(np.asarray(1.0 if length is None else length, dtype=float), (values.ndim,))
+    power = np.abs(np.fft.rfftn(values - values.mean())) ** 2
+    if power.max() == 0:
+        return math.inf
+    freqs = [np.fft.fftfreq(n, L / n) for n, L in zip(values.shape[:-1], lengths[:-1])]
+    freqs.append(np.fft.rfftfreq(values.shape[-1], lengths[-1] / values.shape[-1]))
+    q = np.sqrt(sum(f**2 for f in np.meshgrid(*freqs, indexing="ij")))  # cycles per length
+    q_max = float(q[power > floor * power.max()].max())
+    return float(1.0 / q_max / max(L / n for n, L in zip(values.shape, lengths)))
+
+
+def check_resolution(heights, target_error: float, *, length=None, quantity: str = "contact_area") -> float:
+    """Warn (:class:`AccuracyWarning`) if ``heights`` has fewer points per shortest wavelength than
+    :func:`points_per_wavelength` asks for ``target_error``; returns the grid's points per wavelength."""
+    have = grid_points_per_wavelength(heights, length=length)
+    need = points_per_wavelength(target_error, quantity=quantity)
+    if have < need:
+        warnings.warn(
+            f"target_error={target_error:g}: the grid has {have:.3g} points per shortest wavelength, the "
+            f"measured rule asks for {need:.3g} ({quantity}); refine the surface (contactlib.surfaces.resample "
+            f"or settings_for(..., q_cutoff=...)) or expect a larger error", AccuracyWarning, stacklevel=3)
+    return have
+
+
+def _check_target(target_error) -> None:
+    if not (isinstance(target_error, (int, float)) and 0 < target_error < 1):
+        raise ValueError(f"target_error must lie in (0, 1), got {target_error!r}")
+
+
+# --- analysis of a speed_vs_error dataset -----------------------------------------------------------
+
+
+def fit_order(resolution, error) -> tuple[float, float]:
+    """Least-squares fit of ``error = constant * resolution**-order`` in log-log; NaN with < 3 points."""
+    r, e = np.asarray(resolution, dtype=float), np.asarray(error, dtype=float)
+    ok = np.isfinite(r) & np.isfinite(e) & (e > 0)
+    if ok.sum() < 3:
+        return math.nan, math.nan
+    slope, intercept = np.polyfit(np.log(r[ok]), np.log(e[ok]), 1)
+    return float(-slope), float(np.exp(intercept))
+
+
+def convergence_orders(ds: xr.Dataset, *, floor: float = 1e-12) -> xr.Dataset:
+    """Fitted order and constant of every error quantity against ``resolution``, per scene and kernel,
+    at the smallest tolerance of the dataset; errors below ``floor`` (round-off) are left out."""
+    d = ds.where(ds.status == 0).sel(tol=ds.tol.min())
+    quantities = [q for q in QUANTITIES if q in ds]
+    order = np.full((ds.sizes["scene"], ds.sizes["kernel"], len(quantities)), np.nan)
+    constant = order.copy()
+    for i, scene in enumerate(ds.scene.values):
+        for j, kernel in enumerate(ds.kernel.values):
+            p = d.sel(scene=scene, kernel=kernel)
+            for k, q in enumerate(quantities):
+                err = p[q].where(p[q] > floor)
+                order[i, j, k], constant[i, j, k] = fit_order(p.resolution, err)
+    coords = {"scene": ds.scene, "kernel": ds.kernel, "quantity": ("quantity", quantities,
+                                                                   {"units": "1", "long_name": "error quantity"})}
+    return xr.Dataset({
+        "order": (("scene", "kernel", "quantity"), order,
+                  {"units": "1", "long_name": "convergence order p of error = C resolution^-p"}),
+        "constant": (("scene", "kernel", "quantity"), constant,
+                     {"units": "1", "long_name": "constant C of error = C resolution^-p"}),
+    }, coords=coords)
+
+
+def tolerance_gain(ds: xr.Dataset) -> float:
+    """Largest change of any error quantity caused by the tolerance, per unit tolerance: the maximum
+    over points of ``|error(tol) - error(smallest tol)| / tol`` (same scene, grid and kernel)."""
+    d = ds.where(ds.status == 0)
+    quantities = [q for q in QUANTITIES if q in ds]
+    gains = [(abs(d[q] - d[q].sel(tol=d.tol.min())) / d.tol).max() for q in quantities]
+    return float(np.nanmax([float(g) for g in gains]))
+
+
+def pareto_front(cost, error) -> np.ndarray:
+    """Mask of the points no other point beats in both cost and error (NaN points are never on it)."""
+    c, e = np.asarray(cost, dtype=float).ravel(), np.asarray(error, dtype=float).ravel()
+    mask = np.zeros(c.size, dtype=bool)
+    best = math.inf
+    for i in np.argsort(c, kind="stable"):
+        if np.isfinite(c[i]) and np.isfinite(e[i]) and e[i] < best:
+            mask[i], best = True, e[i]
+    return mask.reshape(np.shape(cost))
+
+
+def cheapest_settings(ds: xr.Dataset, targets, *, error: str = "max_error") -> list[dict]:
+    """For each target relative error and scene, the setting with the smallest ``solve_time`` whose
+    ``error`` is within the target (``n``/``tol``/``kernel`` NaN/"" when no setting reaches it)."""
+    rows = []
+    for target in targets:
+        for scene in ds.scene.values:
+            d = ds.sel(scene=scene).where(ds.status.sel(scene=scene) == 0)
+            s = d[[error, "solve_time"]].to_dataframe().dropna()
+            hit = s[s[error] <= target]
+            row = {"target": float(target), "scene": str(scene), "kernel": "", "n": math.nan, "tol": math.nan,
+                   "solve_time": math.nan, "error": math.nan, "best_error": float(s[error].min())}
+            if len(hit):
+                best = hit["solve_time"].idxmin()
+                idx = dict(zip(hit.index.names, best if isinstance(best, tuple) else (best,)))
+                row.update(kernel=str(idx["kernel"]), n=int(idx["n"]), tol=float(idx["tol"]),
+                           solve_time=float(hit.loc[best, "solve_time"]), error=float(hit.loc[best, error]))
+            rows.append(row)
+    return rows
+
+
+def markdown_table(rows: list[dict]) -> str:
+    """The rows of :func:`cheapest_settings` as a Markdown table."""
+    lines = ["| target error | scene | kernel | N | tol | solve time [s] | error reached |",
+             "|---|---|---|---|---|---|---|"]
+    for r in rows:
+        if r["kernel"]:
+            lines.append(f"| {r['target']:.2%} | {r['scene']} | {r['kernel']} | {r['n']} | {r['tol']:.0e} | "
+                         f"{r['solve_time']:.3g} | {r['error']:.2e} |")
+        else:
+            lines.append(f"| {r['target']:.2%} | {r['scene']} | not reached | | | | best {r['best_error']:.2e} |")
+    return "\n".join(lines) + "\n"
