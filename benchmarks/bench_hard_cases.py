@@ -1,0 +1,84 @@
+"""Iterations, time and memory of the hard-case scenes, plus the ones too large for the test suite.
+
+The scenes are those of ``tests/test_hard_cases.py`` (imported from there, so a scene added to
+the suite is reported here too) and, with ``--large``, a 2D self-affine surface at N = 4096
+(10 % contact, load control): time, iterations, residual and the process' peak resident memory.
+
+    python benchmarks/bench_hard_cases.py [--large 4096] [--json results/bench_hard_cases.json]
+"""
+
+from __future__ import annotations
+
+import os
+
+for _var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
+    os.environ.setdefault(_var, "1")
+
+import argparse
+import json
+import resource
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+
+import contactlib
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
+from test_hard_cases import E, NU, SCENES  # noqa: E402
+
+
+def peak_rss_mib() -> float:
+    return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024  # Linux: KiB
+
+
+def run(name, heights, solve_kwargs) -> dict:
+    kwargs = {"tol": 1e-8, **solve_kwargs}
+    t0 = time.perf_counter()
+    try:
+        out = contactlib.solve(heights, E=E, nu=NU, **kwargs)
+        status = "converged"
+    except contactlib.ConvergenceError as err:
+        out, status = err.dataset, f"not converged (residual {err.residual:.1e})"
+    seconds = time.perf_counter() - t0
+    p, g = out.pressure.values, out.gap.values
+    return {"scene": name, "shape": list(heights.shape), "status": status, "seconds": seconds,
+            "iterations": int(out.iterations), "residual": float(out.residual),
+            "contact_area": float(out.contact_area), "min_pressure": float(p.min()),
+            "max_interpenetration": float(np.maximum(-g, 0).max()), "peak_rss_mib": peak_rss_mib()}
+
+
+def main(argv=None) -> None:
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--large", type=int, nargs="*", default=[4096], help="2D grid sizes of the large scene")
+    parser.add_argument("--json", type=Path)
+    args = parser.parse_args(argv)
+
+    contactlib.solve(np.ones((8, 8)) - np.eye(8), E=E, nu=NU, mean_pressure=0.01)  # load the compiled sweeps
+    rows = []
+    for scene in SCENES:
+        rows.append(run(scene.name, scene.surface(), scene.solve))
+        print(f"{rows[-1]['scene']}: {rows[-1]['seconds']:.2f} s", file=sys.stderr, flush=True)
+    for n in args.large:
+        heights = contactlib.surfaces.self_affine(n, hurst=0.8, q_roll=4, q_cutoff=n // 8, rms_slope=0.1, seed=1)
+        # mean pressure for ~10 % contact: kappa ~ 2 in A = kappa p / (E* rms_slope)
+        rows.append(run(f"self-affine {n} x {n}, ~10 % contact", heights,
+                        {"mean_pressure": 0.1 / 2.0 * (E / (1 - NU**2)) * 0.1}))
+        print(f"{rows[-1]['scene']}: {rows[-1]['seconds']:.2f} s", file=sys.stderr, flush=True)
+
+    print(f"contactlib {contactlib.__version__}, tol 1e-8, 1 FFTW thread; peak RSS is the whole process' so far\n")
+    print("| scene | shape | status | time [s] | iterations | residual | contact area | min p | max overlap | "
+          "peak RSS [MiB] |")
+    print("|---|---|---|---|---|---|---|---|---|---|")
+    for r in rows:
+        print(f"| {r['scene']} | {'x'.join(map(str, r['shape']))} | {r['status']} | {r['seconds']:.2f} | "
+              f"{r['iterations']} | {r['residual']:.1e} | {r['contact_area']:.4g} | {r['min_pressure']:.1e} | "
+              f"{r['max_interpenetration']:.1e} | {r['peak_rss_mib']:.0f} |")
+    if args.json:
+        args.json.parent.mkdir(parents=True, exist_ok=True)
+        args.json.write_text(json.dumps(rows, indent=1))
+
+
+if __name__ == "__main__":
+    main()
