@@ -49,9 +49,9 @@ def solve_polonsky_keer(
         Warm start (e.g. the previous point of a load path).
     precondition : bool
         Precondition the search direction with the inverse half-space kernel ``E*|q|/2`` restricted
-        to the contact set (in the spirit of Vollebregt, J. Comput. Phys. 257, 333-351, 2014): one more FFT pair per
-        iteration, 3-7x fewer iterations on rough surfaces (benchmarks/). Load control, and
-        displacement control of non-periodic problems.
+        to the contact set (in the spirit of Vollebregt, J. Comput. Phys. 257, 333-351, 2014): one
+        more FFT pair per iteration, 3-7x fewer iterations on rough surfaces (benchmarks/). Load
+        control, and displacement control of non-periodic problems.
     """
     load_control = mean_pressure is not None
     # Periodic displacement control has no load constraint to centre the direction, and the
