@@ -2,8 +2,8 @@
 
 Each function is one sweep over the grid doing what would take numpy 4-8 passes and
 temporaries; the sweeps are memory-bound and, beside two or three FFT pairs per iteration,
-would otherwise dominate its cost (measured in benchmarks/). Arrays are 2D (profiles are viewed as ``(1, n)``) and may be
-strided views into the FFT work buffers.
+would otherwise dominate its cost (measured in benchmarks/). Arrays are 2D (profiles are
+viewed as ``(1, n)``) and may be strided views into the FFT work buffers.
 """
 
 from __future__ import annotations
