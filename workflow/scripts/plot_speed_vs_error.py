@@ -29,9 +29,10 @@ for ax, ax2, scene in zip(axes[0], axes[1], scenes):
                   color=f"C{k}", alpha=0.6, label=kernel)
     front = accuracy.pareto_front(t, e)
     order = np.argsort(t[front])
-    ax.loglog(t[front][order], e[front][order], "k-", lw=1, label="Pareto front")
-    ax.set(xlabel=f"{ds.solve_time.long_name} [{ds.solve_time.units}]", ylabel="largest relative error [1]",
-           title=f"{scene}: {ds.max_error.long_name}")
+    ax.loglog(t[front][order], e[front][order], "k.-", lw=1, ms=6, label="Pareto front")
+    ax.set(xlabel=f"{ds.solve_time.long_name} [{ds.solve_time.units}]", ylabel=f"{ds.max_error.long_name} [1]",
+           title=str(scene))
+    ax.yaxis.label.set_size(7)
     best = d.sel(tol=ds.tol.min())
     for k, kernel in enumerate(ds.kernel.values):
         for q in orders.quantity.values:
