@@ -2,7 +2,9 @@
 
 Each ``*_point`` takes the swept parameters and the study's constants as keywords (bind the
 constants with ``functools.partial``) and calls only the public API. :data:`STUDIES` maps a study
-name to its point function, the FFT shapes it plans, and the labels of its outputs.
+name to its point function, the FFT shapes it plans, and optionally ``path_dim`` (a load path walked
+with warm starts) or ``group_dims`` (names whose points share one task and its in-process caches,
+e.g. the rough reference of ``speed_vs_error``).
 """
 
 from __future__ import annotations

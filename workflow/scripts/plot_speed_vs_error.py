@@ -50,7 +50,8 @@ for ax, ax2, scene in zip(axes[0], axes[1], scenes):
     for a in (ax, ax2):
         a.legend(fontsize=6)
 fig.suptitle(f"{ds.attrs['title']} ({ds.attrs['scale']} scale; wall times noisy, shared machine). Bottom: "
-             "per contact radius (hertz), half-width (westergaard_1d), wavelength (wavy_2d), shortest wavelength (rough)",
+             "per contact radius (hertz), half-width (westergaard_1d), wavelength (wavy_2d), "
+             "shortest wavelength (rough)",
              fontsize=8)
 fig.savefig(sm.output[0], dpi=120)
 print(orders.order.to_dataframe().dropna().to_string(), file=sys.stderr)
