@@ -93,6 +93,25 @@ def points_per_wavelength(target_error: float, *, quantity: str = "contact_area"
     return float((fit["constant"] / target_error) ** (1.0 / fit["order"]))
 
 
+def expected_error(points_per_wavelength, *, quantity: str = "contact_area", bound: bool = False):
+    """Relative error the rule expects at a resolution (points per shortest wavelength).
+
+    ``bound=False``: the fit against the continuum (the measured constant corrected for the 4x
+    reference); ``bound=True``: with :data:`SAFETY`, the value :func:`points_per_wavelength` inverts.
+
+    Examples
+    --------
+    >>> from contactlib import accuracy
+    >>> round(float(accuracy.expected_error(8.0)), 3)   # 8 points per shortest wavelength
+    0.077
+    """
+    if quantity not in ROUGH_FITS:
+        raise ValueError(f"quantity must be one of {tuple(ROUGH_FITS)}, got {quantity!r}")
+    fit = ROUGH_FITS[quantity]
+    constant = fit["constant"] if bound else fit["constant"] / SAFETY
+    return constant * np.asarray(points_per_wavelength, dtype=float) ** -fit["order"]
+
+
 def tolerance_for(target_error: float) -> float:
     """Solver tolerance whose share of the error stays below ``target_error / 10``."""
     _check_target(target_error)

@@ -18,7 +18,7 @@ import time
 import numpy as np
 import xarray as xr
 
-from . import analysis, surfaces
+from . import accuracy, analysis, surfaces
 from .contact import ConvergenceError, solve
 from .materials import contact_modulus
 from .reference import hertz, westergaard
@@ -64,6 +64,8 @@ STUDY_VARIABLES: dict[str, dict[str, str]] = {
     "max_error": {"units": "1", "long_name": "largest relative error of the scene's defined quantities"},
     "solve_time": {"units": "s", "long_name": "wall-clock time of contactlib.solve alone"},
     "reference_residual": {"units": "1", "long_name": "residual reached by the rough reference solve"},
+    "area_error_estimate": {"units": "1", "long_name": "contact-area error expected at this resolution "
+                            "(contactlib.accuracy.expected_error of n / q_cutoff)"},
     "resolution": {"units": "1", "long_name": "grid points per characteristic length (rough: per shortest wavelength)"},
     "x": {"units": "m", "long_name": "position along x"},
     "y": {"units": "m", "long_name": "position along y"},
@@ -335,6 +337,18 @@ STUDIES["speed_vs_error"] = {"point": speed_error_point, "fft_shapes": speed_err
                               "group_dims": ("kernel", "tol")}
 STUDIES["area_load"]["surface_keys"] = ("hurst", "seed")
 STUDIES["anisotropy"]["surface_keys"] = ("anisotropy", "seed")
+
+
+def add_error_estimate(ds: xr.Dataset, name: str, constants: dict) -> xr.Dataset:
+    """State the contact-area error a rough-surface study's resolution gives: ``area_error_estimate``
+    (over ``n`` if swept) from :func:`contactlib.accuracy.expected_error` at ``n / q_cutoff`` points per
+    shortest wavelength (the fit, not the bound). Other studies are returned unchanged."""
+    if "surface_keys" not in STUDIES[name]:
+        return ds
+    n = ds["n"] if "n" in ds.dims else constants["n"]
+    estimate = xr.DataArray(accuracy.expected_error(np.asarray(n) / constants["q_cutoff"]),
+                            dims=("n",) if "n" in ds.dims else (), attrs=STUDY_VARIABLES["area_error_estimate"])
+    return ds.assign(area_error_estimate=estimate)
 
 
 def study_surfaces(name: str, constants: dict, grid: dict) -> xr.Dataset:

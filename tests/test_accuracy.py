@@ -116,6 +116,20 @@ def test_rule_is_monotone_and_documented_constants_are_consistent():
     assert accuracy.tolerance_for(1e-3) < accuracy.tolerance_for(1e-2) <= 1e-4
 
 
+def test_studies_state_the_area_error_of_their_resolution():
+    """area_load at n = 256 and 512 with q_cutoff 64 (4 and 8 points per shortest wavelength)."""
+    ds = xr.Dataset({"contact_area": ("n", [0.1, 0.09])}, coords={"n": [256, 512]})
+    out = studies.add_error_estimate(ds, "area_load", {"q_cutoff": 64})
+    np.testing.assert_allclose(out.area_error_estimate.values, accuracy.expected_error(np.array([4.0, 8.0])))
+    assert out.area_error_estimate.attrs["units"] == "1" and "q_cutoff" in out.area_error_estimate.long_name
+    fit = accuracy.ROUGH_FITS["contact_area"]
+    c = fit["measured_constant"] / (1 - 4.0 ** -fit["order"])  # against the continuum, no safety factor
+    assert float(out.area_error_estimate.sel(n=256)) == pytest.approx(c * 4.0 ** -fit["order"], rel=1e-12)
+    scalar = studies.add_error_estimate(xr.Dataset({"a": ("seed", [1.0])}), "anisotropy", {"n": 256, "q_cutoff": 64})
+    assert scalar.area_error_estimate.ndim == 0
+    assert "area_error_estimate" not in studies.add_error_estimate(ds, "validation", {"q_cutoff": 64})
+
+
 def test_analysis_helpers():
     r = np.array([4.0, 8.0, 16.0, 32.0])
     order, constant = accuracy.fit_order(r, 0.3 * r**-1.5)

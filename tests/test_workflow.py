@@ -75,6 +75,7 @@ def test_tiny_end_to_end_run_and_report(workdir):
             assert ds.attrs[key], key
         assert yaml.safe_load(ds.attrs["config"])["study"]["grid"]["n"] == [32, 64]
         assert 1.5 < float(ds.kappa.mean()) < 3.5
+        assert ds.area_error_estimate.dims == ("n",) and float(ds.area_error_estimate.sel(n=64)) < 0.1
     with xr.open_dataset(results / "validation.nc") as ds:
         ratio = ds.hertz_peak_pressure / ds.hertz_peak_pressure_exact
         assert float(abs(ratio.sel(n=64) - 1).max()) < 0.05

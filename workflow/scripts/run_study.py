@@ -40,6 +40,7 @@ def main(sm):
             path_dim=path_dim,
             group_dims=study.get("group_dims", ()),
         )
+    ds = studies.add_error_estimate(ds, spec["name"], constants)
     sweep.write_netcdf(ds, sm.output[0], sweep_dims=spec["grid"])
     emit(f"wrote {sm.output[0]}: {dict(ds.sizes)}, {int((ds.status != 0).sum())} failed points")
 
