@@ -113,7 +113,8 @@ def expected_error(points_per_wavelength, *, quantity: str = "contact_area", bou
 
 
 def tolerance_for(target_error: float) -> float:
-    """Solver tolerance whose share of the error stays below ``target_error / 10``."""
+    """Solver tolerance whose share of the error stays below ``target_error / 10``:
+    ``target_error / (10 * TOLERANCE_GAIN)``, at most 1e-4 (the loosest tolerance the study measured)."""
     _check_target(target_error)
     return float(min(1e-4, target_error / (10.0 * TOLERANCE_GAIN)))
 
