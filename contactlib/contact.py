@@ -20,7 +20,8 @@ METHODS = ("cg", "active-set")
 
 
 class ConvergenceError(RuntimeError):
-    """A solve did not reach its tolerance within ``max_iter``.
+    """A solve did not reach its tolerance within ``max_iter``, or stalled before it (the CG
+    residual stopped falling, e.g. at the round-off floor of a tolerance set too tight).
 
     Attributes
     ----------
@@ -220,9 +221,12 @@ def solve(
             "carry load too; enlarge the window (or use periodic=True for a periodic surface)"
         )
     if not state.converged:
+        stalled = state.solver == "polonsky-keer" and state.iterations < int(max_iter)
         raise ConvergenceError(
             f"{state.solver} did not converge in {state.iterations} iterations: residual "
-            f"{state.residual:.3e} > tol {tol:.1e}", residual=state.residual, dataset=ds,
+            f"{state.residual:.3e} > tol {tol:.1e}"
+            + (" (stalled: no progress over the last iterations; round-off floor or an ill-posed scene)"
+               if stalled else ""), residual=state.residual, dataset=ds,
         )
     return ds
 

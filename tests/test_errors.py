@@ -53,6 +53,15 @@ def test_bad_length():
         contactlib.solve(np.zeros((8, 8)), E=1.0, nu=0.3, mean_pressure=0.01, length=-1.0)
 
 
+def test_round_off_floor_stalls_early_instead_of_running_to_max_iter(heights):
+    """tol 1e-17 is below the round-off floor (~1e-15 here): the solve must say so, not spin."""
+    with pytest.raises(contactlib.ConvergenceError, match="stalled") as info:
+        contactlib.solve(heights, E=1.0, nu=0.3, mean_pressure=0.01, tol=1e-17, max_iter=1_000_000)
+    from contactlib.solvers.ccg import STALL_ITERATIONS
+    assert int(info.value.dataset.iterations) < 3 * STALL_ITERATIONS
+    assert 0 < info.value.residual < 1e-12
+
+
 def test_non_convergence_raises_with_residual_and_partial_dataset(heights):
     with pytest.raises(contactlib.ConvergenceError) as info:
         contactlib.solve(heights, E=1.0, nu=0.3, mean_pressure=0.01, tol=1e-12, max_iter=3)
