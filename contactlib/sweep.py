@@ -65,8 +65,7 @@ def _prepare_worker(wisdom, threads: int) -> None:
         return
     digest = hashlib.sha256(b"".join(wisdom)).hexdigest()
     if _worker_wisdom.get("digest") != digest:
-        fft._load_wisdom_once()  # the on-disk cache first, so the parent's plans are the last word
-        fft.import_wisdom(wisdom)
+        fft.import_wisdom(wisdom)  # over the on-disk cache: the parent's plans are the last word
         _worker_wisdom["digest"] = digest
 
 
