@@ -13,7 +13,7 @@ equal accuracy*:
   excluded: plans are cached per shape and wisdom on disk).
 * FFT pair = median time of one planned pyfftw forward + inverse real FFT of the same grid
   (``contactlib.fft.get_fft(shape)``), measured in the same run. A Polonsky-Keer iteration needs
-  two convolutions, contactlib's preconditioned one three (``Peer.fft_pairs_per_iteration``), so
+  two convolutions, contactlib's preconditioned one two and a half (K p, the preconditioner, and only the forward transform of t) (``Peer.fft_pairs_per_iteration``), so
   ``non-FFT share = (t_iter - k t_pair) / t_iter`` with that k.
 * peak memory = peak RSS of a fresh subprocess during one solve, minus its RSS after imports and
   after loading the surface (Linux: VmHWM reset through /proc/self/clear_refs; otherwise psutil
@@ -90,7 +90,7 @@ class Peer:
 class Contactlib(Peer):
     name = "contactlib"
     tol_meaning = "scale-free complementarity residual (contactlib.solvers.contact_residual)"
-    fft_pairs_per_iteration = 3  # K p, the preconditioner P g, K t (load control)
+    fft_pairs_per_iteration = 2.5  # K p, the preconditioner P g, and the forward transform of t (load control)
 
     def __init__(self, E, nu, threads):
         super().__init__(E, nu, threads)
@@ -484,7 +484,7 @@ def markdown(rows: list[Row], info: dict, args) -> str:
             "reaches in 3000 iterations: column ref res); peers' tolerance tightened "
             f"(half decades) until their error <= contactlib's at tol {args.tol:g}",
             f"- time: median of {args.repeats} after a warm-up; FFT pair = planned pyfftw rfft+irfft of the grid; "
-            "non-FFT share = (t_iter - k pairs)/t_iter, k = 3 for contactlib (preconditioned), 2 for the peers",
+            "non-FFT share = (t_iter - k pairs)/t_iter, k = 2.5 for contactlib (K p, preconditioner, forward FFT of t), 2 for the peers",
             "- peak memory: fresh subprocess, peak RSS during one solve minus RSS after imports and surface load "
             f"({rows[0].memory_method or 'not measured'})", ""]
     out.append("| solver | N | thr | A target | A | tol | error | ref res | time [s] | iter | t_iter/FFT pair | non-FFT | "

@@ -94,20 +94,24 @@ def contact_sums(r, t, p):
 @_jit
 def step_project_reenter(p, factor, t, g, tau, dest):
     """``p = factor p - tau t``, projected on ``p >= 0``, interpenetrating points re-entered with
-    ``p = -tau g``; ``dest[...] = p``. Returns (sum p, number of re-entered points)."""
+    ``p = -tau g``; ``dest[...] = p``. Returns (sum p, number of re-entered points, sum of ``t``
+    over the new contact set)."""
     psum = 0.0
     n_ol = 0
+    t_kept = 0.0
     for i in range(p.shape[0]):
         for j in range(p.shape[1]):
-            v = factor * p[i, j] - tau * t[i, j]
+            tv = t[i, j]
+            v = factor * p[i, j] - tau * tv
             gv = g[i, j]
             reenter = v <= 0.0 and gv < 0.0
             v = -tau * gv if reenter else max(v, 0.0)
             n_ol += 1 if reenter else 0
+            t_kept += tv if v > 0.0 else 0.0
             p[i, j] = v
             dest[i, j] = v
             psum += v
-    return psum, n_ol
+    return psum, n_ol, t_kept
 
 
 def as2d(a: np.ndarray) -> np.ndarray:

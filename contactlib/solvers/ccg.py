@@ -5,11 +5,11 @@ current contact set, with projection onto ``p >= 0`` and re-entry of interpenetr
 (which restarts the conjugacy). Load control fixes ``mean(p)`` and finds the rigid approach as
 the mean gap offset over the contact set; displacement control fixes the approach.
 
-Two convolutions per iteration (``K p`` and ``K t``), written and read in place in the FFT
-buffers; everything else is five fused sweeps (:mod:`._fused`). With the Fourier
-preconditioner a third FFT pair and a sixth sweep are added. Under load control the pressure is
-kept unnormalised and scaled to the load inside the sweeps. The centring of ``K t`` over
-the contact set enters only through ``sum_c (r - r_c) t = sum r t - r_c sum t``.
+Per iteration one convolution ``K p`` and, for the step length, ``<t, K t>`` from the forward
+transform of ``t`` alone (Parseval), written and read in place in the FFT buffers; everything else
+is four fused sweeps (:mod:`._fused`). The Fourier preconditioner adds one FFT pair and a sweep.
+Under load control the search direction is centred exactly on the contact set (so a step keeps
+the load), and the pressure is kept unnormalised and scaled to the load inside the sweeps.
 """
 
 from __future__ import annotations
@@ -88,7 +88,7 @@ def solve_polonsky_keer(
     g = np.empty_like(p)
     t = np.zeros_like(p)
     unused = np.empty((1, 1))
-    G_old, restart = 1.0, True
+    G_old, restart, t_kept = 1.0, True, 0.0
     residual, approach = np.inf, float(penetration or 0.0)
     fz.as2d(operator.load())[...] = p
     best, best_it = np.inf, 0
@@ -107,26 +107,25 @@ def solve_polonsky_keer(
             best, best_it = residual, it
         elif it - best_it >= STALL_ITERATIONS:
             break
-        if precondition:  # z = P g on the contact set, centred there under load control
+        if precondition:  # z = P g on the contact set
             z = fz.as2d(operator.convolve(inverse=True))
             z_sum, G = fz.contact_sums(z, g, p)
-            z_shift = z_sum / n_contact if load_control else 0.0
         else:
-            z, z_shift = g, 0.0
+            z, z_sum = g, 0.0  # g is centred on the contact set already
         beta = 0.0 if restart else G / G_old
         G_old = G
-        t_sum, gt = fz.conjugate_direction(z, z_shift, g, p, beta, t, fz.as2d(operator.load()))
-        r = fz.as2d(operator.convolve())
-        r_sum, rt = fz.contact_sums(r, t, p)
-        if load_control:
-            rt -= r_sum / n_contact * t_sum
-        tau = gt / rt if rt > 0 else 1.0 / self_compliance
-        psum, n_overlap = fz.step_project_reenter(p, factor, t, g, tau, fz.as2d(operator.load()))
+        # under load control t is centred on the contact set, so a step keeps the load; t_kept is
+        # the previous direction's sum over the current contact set
+        shift = (z_sum + beta * t_kept) / n_contact if load_control else 0.0
+        gt = fz.conjugate_direction(z, shift, g, p, beta, t, fz.as2d(operator.load()))[1]
+        tKt = operator.quadratic_form()  # <t, K t> by Parseval: no inverse transform
+        tau = gt / tKt if tKt > 0 else 1.0 / self_compliance
+        psum, n_overlap, t_kept = fz.step_project_reenter(p, factor, t, g, tau, fz.as2d(operator.load()))
         restart = n_overlap > 0
         if load_control:
             if psum <= 0:  # lost every point: restart from the highest point
                 p[...] = np.where(hp == 0.0, 1.0, 0.0)
-                psum = p.sum()
+                psum, restart = p.sum(), True
                 fz.as2d(operator.load())[...] = p
             factor = mean_pressure * n / psum
     p *= factor
