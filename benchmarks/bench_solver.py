@@ -13,7 +13,8 @@ equal accuracy*:
   excluded: plans are cached per shape and wisdom on disk).
 * FFT pair = median time of one planned pyfftw forward + inverse real FFT of the same grid
   (``contactlib.fft.get_fft(shape)``), measured in the same run. A Polonsky-Keer iteration needs
-  two convolutions, contactlib's preconditioned one two and a half (K p, the preconditioner, and only the forward transform of t) (``Peer.fft_pairs_per_iteration``), so
+  two convolutions, contactlib's preconditioned one two and a half (``K p``, the preconditioner,
+  the forward transform of ``t``; ``Peer.fft_pairs_per_iteration``), so
   ``non-FFT share = (t_iter - k t_pair) / t_iter`` with that k.
 * peak memory = peak RSS of a fresh subprocess during one solve, minus its RSS after imports and
   after loading the surface (Linux: VmHWM reset through /proc/self/clear_refs; otherwise psutil
