@@ -34,11 +34,11 @@ def gap_and_contact_mean(u, factor, hp, p, g):
 
 
 @_jit
-def shift_and_measure(g, p, factor, approach, masked, write_masked):
-    """``g -= approach``; if ``write_masked``, ``masked = g`` on the contact set and 0 elsewhere.
-    ``factor p`` is the pressure.
+def measure(g, p, factor, approach, masked, write_masked):
+    """Contact measures of the gap ``g - approach`` (``g`` is left unshifted) and pressure
+    ``factor p``; if ``write_masked``, ``masked`` = the gap on the contact set and 0 elsewhere.
 
-    Returns (sum p|g|, sum max(-g, 0) off contact, sum over contact of g^2, sum p)."""
+    Returns (sum p|gap|, sum max(-gap, 0) off contact, sum over contact of gap^2, sum p)."""
     comp = 0.0
     pen = 0.0
     G = 0.0
@@ -46,7 +46,6 @@ def shift_and_measure(g, p, factor, approach, masked, write_masked):
     for i in range(g.shape[0]):
         for j in range(g.shape[1]):
             v = g[i, j] - approach
-            g[i, j] = v
             pv = factor * p[i, j]
             m = 1.0 if pv > 0.0 else 0.0
             w = m * v
@@ -60,9 +59,9 @@ def shift_and_measure(g, p, factor, approach, masked, write_masked):
 
 
 @_jit
-def conjugate_direction(z, shift, g, p, beta, t, dest):
+def conjugate_direction(z, shift, g, approach, p, beta, t, dest):
     """``t = (z - shift + beta t)`` on the contact set, 0 elsewhere; ``dest[...] = t`` (``dest`` may
-    be ``z``: each element is read before it is written); returns (sum t, sum g t)."""
+    be ``z``: each element is read before it is written); returns (sum t, sum (g - approach) t)."""
     st = 0.0
     gt = 0.0
     for i in range(g.shape[0]):
@@ -70,7 +69,7 @@ def conjugate_direction(z, shift, g, p, beta, t, dest):
             if p[i, j] > 0.0:
                 v = z[i, j] - shift + beta * t[i, j]
                 st += v
-                gt += g[i, j] * v
+                gt += (g[i, j] - approach) * v
             else:
                 v = 0.0
             t[i, j] = v
@@ -79,23 +78,23 @@ def conjugate_direction(z, shift, g, p, beta, t, dest):
 
 
 @_jit
-def contact_sums(r, t, p):
-    """Returns (sum of r over the contact set, sum over it of r t)."""
+def contact_sums(r, t, offset, p):
+    """Returns (sum of r over the contact set, sum over it of r (t - offset))."""
     sr = 0.0
     rt = 0.0
     for i in range(r.shape[0]):
         for j in range(r.shape[1]):
             v = r[i, j] if p[i, j] > 0.0 else 0.0
             sr += v
-            rt += v * t[i, j]
+            rt += v * (t[i, j] - offset)
     return sr, rt
 
 
 @_jit
-def step_project_reenter(p, factor, t, g, tau, dest):
-    """``p = factor p - tau t``, projected on ``p >= 0``, interpenetrating points re-entered with
-    ``p = -tau g``; ``dest[...] = p``. Returns (sum p, number of re-entered points, sum of ``t``
-    over the new contact set)."""
+def step_project_reenter(p, factor, t, g, approach, tau, dest):
+    """``p = factor p - tau t``, projected on ``p >= 0``, points where the gap ``g - approach`` is
+    negative re-entered with ``p = -tau gap``; ``dest[...] = p``. Returns (sum p, number of
+    re-entered points, sum of ``t`` over the new contact set)."""
     psum = 0.0
     n_ol = 0
     t_kept = 0.0
@@ -103,7 +102,7 @@ def step_project_reenter(p, factor, t, g, tau, dest):
         for j in range(p.shape[1]):
             tv = t[i, j]
             v = factor * p[i, j] - tau * tv
-            gv = g[i, j]
+            gv = g[i, j] - approach
             reenter = v <= 0.0 and gv < 0.0
             v = -tau * gv if reenter else max(v, 0.0)
             n_ol += 1 if reenter else 0

@@ -7,9 +7,10 @@ the mean gap offset over the contact set; displacement control fixes the approac
 
 Per iteration one convolution ``K p`` and, for the step length, ``<t, K t>`` from the forward
 transform of ``t`` alone (Parseval), written and read in place in the FFT buffers; everything else
-is four fused sweeps (:mod:`._fused`). The Fourier preconditioner adds one FFT pair and a sweep.
-Under load control the search direction is centred exactly on the contact set (so a step keeps
-the load), and the pressure is kept unnormalised and scaled to the load inside the sweeps.
+is four fused sweeps (:mod:`._fused`), with the gap kept unshifted and the approach subtracted
+inside them. The Fourier preconditioner adds one FFT pair and a sweep. Under load control the
+search direction is centred exactly on the contact set (so a step keeps the load), and the
+pressure is kept unnormalised and scaled to the load inside the sweeps.
 """
 
 from __future__ import annotations
@@ -99,7 +100,8 @@ def solve_polonsky_keer(
         if load_control:
             approach = g_sum / n_contact
         masked = fz.as2d(operator.load()) if precondition else unused
-        comp, pen, G, psum = fz.shift_and_measure(g, p, factor, approach, masked, precondition)
+        # g stays unshifted: the gap is g - approach, folded into the sums below
+        comp, pen, G, psum = fz.measure(g, p, factor, approach, masked, precondition)
         residual = (comp + psum * pen / n) / (psum * scale) if psum > 0 else pen / (n * scale)
         if residual <= tol or it == max_iter:
             break
@@ -107,20 +109,21 @@ def solve_polonsky_keer(
             best, best_it = residual, it
         elif it - best_it >= STALL_ITERATIONS:
             break
-        if precondition:  # z = P g on the contact set
+        if precondition:  # z = P gap on the contact set; G = sum_c z gap
             z = fz.as2d(operator.convolve(inverse=True))
-            z_sum, G = fz.contact_sums(z, g, p)
-        else:
-            z, z_sum = g, 0.0  # g is centred on the contact set already
-        beta = 0.0 if restart else G / G_old
+            z_sum, G = fz.contact_sums(z, g, approach, p)
+            z_offset = 0.0
+        else:  # z = gap, centred on the contact set under load control
+            z, z_sum, z_offset = g, 0.0, approach
+        beta = 0.0 if restart or G_old <= 0 else G / G_old
         G_old = G
         # under load control t is centred on the contact set, so a step keeps the load; t_kept is
         # the previous direction's sum over the current contact set
-        shift = (z_sum + beta * t_kept) / n_contact if load_control else 0.0
-        gt = fz.conjugate_direction(z, shift, g, p, beta, t, fz.as2d(operator.load()))[1]
+        shift = z_offset + ((z_sum + beta * t_kept) / n_contact if load_control else 0.0)
+        gt = fz.conjugate_direction(z, shift, g, approach, p, beta, t, fz.as2d(operator.load()))[1]
         tKt = operator.quadratic_form()  # <t, K t> by Parseval: no inverse transform
         tau = gt / tKt if tKt > 0 else 1.0 / self_compliance
-        psum, n_overlap, t_kept = fz.step_project_reenter(p, factor, t, g, tau, fz.as2d(operator.load()))
+        psum, n_overlap, t_kept = fz.step_project_reenter(p, factor, t, g, approach, tau, fz.as2d(operator.load()))
         restart = n_overlap > 0
         if load_control:
             if psum <= 0:  # lost every point: restart from the highest point
@@ -129,6 +132,7 @@ def solve_polonsky_keer(
                 fz.as2d(operator.load())[...] = p
             factor = mean_pressure * n / psum
     p *= factor
+    g -= approach
 
     # the work buffers have been reused since K p was formed: one more convolution for the output
     displacement = operator(p).reshape(heights.shape)
