@@ -1,8 +1,9 @@
 """contactlib: rough-surface contact mechanics with FFT boundary elements.
 
 The public API: :func:`solve` for frictionless normal contact, :mod:`contactlib.surfaces` to
-generate surfaces, :mod:`contactlib.analysis` to measure them and their contact fields, :mod:`contactlib.accuracy` for the
-measured grid and tolerance rules (``solve(..., target_error=...)``).
+generate surfaces, :mod:`contactlib.analysis` to measure them and their contact fields,
+:mod:`contactlib.accuracy` for the measured grid and tolerance rules
+(``solve(..., target_error=...)``).
 """
 
 from . import accuracy, analysis, reference, surfaces
