@@ -123,7 +123,8 @@ def solve_polonsky_keer(
         gt = fz.conjugate_direction(z, shift, g, approach, p, beta, t, fz.as2d(operator.load()))[1]
         tKt = operator.quadratic_form()  # <t, K t> by Parseval: no inverse transform
         tau = gt / tKt if tKt > 0 else 1.0 / self_compliance
-        psum, n_overlap, t_kept = fz.step_project_reenter(p, factor, t, g, approach, tau, fz.as2d(operator.load()))
+        psum, n_overlap, t_kept = fz.step_project_reenter(p, factor, t, g, approach, tau,
+                                                          fz.as2d(operator.load()))
         restart = n_overlap > 0
         if load_control:
             if psum <= 0:  # lost every point: restart from the highest point
@@ -133,9 +134,8 @@ def solve_polonsky_keer(
             factor = mean_pressure * n / psum
     p *= factor
     g -= approach
-
-    # the work buffers have been reused since K p was formed: one more convolution for the output
-    displacement = operator(p).reshape(heights.shape)
+    # g was formed from K p of this very p: gap = u - hp - approach gives u without another convolution
+    displacement = (g + hp + approach).reshape(heights.shape)
     return ContactState(
         pressure=p.reshape(heights.shape), gap=g.reshape(heights.shape), displacement=displacement,
         penetration=float(approach), mean_pressure=float(p.mean()), iterations=it, residual=float(residual),
