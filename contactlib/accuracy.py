@@ -27,6 +27,9 @@ import warnings
 import numpy as np
 import xarray as xr
 
+from . import fft
+from .grid import Grid
+
 REFERENCE_FACTOR = 4
 """The rough references of the study are this much finer: with ``error = C ppw**-p`` against the
 continuum, the measured error against the reference is ``C (1 - 4**-p) ppw**-p``."""
@@ -170,12 +173,10 @@ def grid_points_per_wavelength(heights, *, length=None, floor: float = 1e-10) ->
     if length is None and isinstance(heights, xr.DataArray):
         length = [float(heights[d][1] - heights[d][0]) * heights.sizes[d] for d in heights.dims]
     lengths = np.broadcast_to(np.asarray(1.0 if length is None else length, dtype=float), (values.ndim,))
-    power = np.abs(np.fft.rfftn(values - values.mean())) ** 2
+    power = np.abs(fft.rfftn(values - values.mean())) ** 2
     if power.max() == 0:
         return math.inf
-    freqs = [np.fft.fftfreq(n, L / n) for n, L in zip(values.shape[:-1], lengths[:-1])]
-    freqs.append(np.fft.rfftfreq(values.shape[-1], lengths[-1] / values.shape[-1]))
-    q = np.sqrt(sum(f**2 for f in np.meshgrid(*freqs, indexing="ij")))  # cycles per length
+    q = Grid(values.shape, tuple(float(L) for L in lengths)).wavenumber() / (2 * math.pi)  # cycles per length
     q_max = float(q[power > floor * power.max()].max())
     return float(1.0 / q_max / max(L / n for n, L in zip(values.shape, lengths)))
 
