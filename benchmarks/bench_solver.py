@@ -60,6 +60,7 @@ class Solution:
     pressure: np.ndarray
     iterations: int
     seconds: float
+    converged: bool = True  # False: stopped by the iteration cap (``max_iter``) before its tolerance
 
 
 class Peer:
@@ -84,7 +85,7 @@ class Peer:
     def version() -> str:
         return "?"
 
-    def solve(self, heights: np.ndarray, mean_pressure: float, tol: float) -> Solution:
+    def solve(self, heights: np.ndarray, mean_pressure: float, tol: float, *, max_iter: int = 100_000) -> Solution:
         raise NotImplementedError
 
 
@@ -103,10 +104,14 @@ class Contactlib(Peer):
 
     def solve(self, heights, mean_pressure, tol, *, max_iter=10_000):
         t0 = time.perf_counter()
-        out = contactlib.solve(heights, E=self.E, nu=self.nu, mean_pressure=mean_pressure, tol=tol, length=1.0,
-                               max_iter=max_iter)
+        converged = True
+        try:
+            out = contactlib.solve(heights, E=self.E, nu=self.nu, mean_pressure=mean_pressure, tol=tol, length=1.0,
+                                   max_iter=max_iter)
+        except contactlib.ConvergenceError as exc:
+            out, converged = exc.dataset, False
         dt = time.perf_counter() - t0
-        return Solution(out["pressure"].values, int(out["iterations"]), dt)
+        return Solution(out["pressure"].values, int(out["iterations"]), dt, converged)
 
     def reference(self, heights, mean_pressure, tol, *, max_iter=3000) -> tuple[Solution, float]:
         """The tightest solution reachable, and its residual (round-off can stall it above ``tol``)."""
@@ -166,7 +171,7 @@ class Tamaas(Peer):
 
         return f"{tm.__version__} (backend {tm.TamaasInfo.backend})"
 
-    def solve(self, heights, mean_pressure, tol):
+    def solve(self, heights, mean_pressure, tol, *, max_iter=100_000):
         tm = self.tm
         n = heights.shape
         surface = np.ascontiguousarray(heights, dtype=float)
@@ -174,14 +179,15 @@ class Tamaas(Peer):
         model = tm.ModelFactory.createModel(tm.model_type.basic_2d, [1.0, 1.0], list(n))
         model.E, model.nu = self.E, self.nu
         solver = tm.PolonskyKeerRey(model, surface, tol, tm.PolonskyKeerRey.pressure, tm.PolonskyKeerRey.pressure)
-        solver.max_iter = 100_000
-        solver.dump_freq = 10**9  # prints only the first and the converged iteration
+        solver.max_iter = max_iter
+        solver.dump_freq = 10**9  # prints only the first and the last iteration
         with _capture_output() as log:
-            solver.solve(mean_pressure)
+            error = solver.solve(mean_pressure)  # its final error: above tol when max_iter stopped it
         dt = time.perf_counter() - t0
         rows = [ln.split() for ln in log.getvalue().splitlines()]
         iters = [int(r[0]) for r in rows if r and r[0].isdigit()]
-        return Solution(np.array(model.traction, copy=True).reshape(n), max(iters) if iters else -1, dt)
+        return Solution(np.array(model.traction, copy=True).reshape(n), max(iters) if iters else -1, dt,
+                        bool(error < tol))
 
 
 class ContactMechanicsPeer(Peer):
@@ -219,7 +225,7 @@ class ContactMechanicsPeer(Peer):
 
         return str(ContactMechanics.__version__)
 
-    def solve(self, heights, mean_pressure, tol):
+    def solve(self, heights, mean_pressure, tol, *, max_iter=100_000):
         cm = self.cm
         n = heights.shape
         E_star = self.E / (1.0 - self.nu**2)
@@ -234,12 +240,12 @@ class ContactMechanicsPeer(Peer):
             warnings.simplefilter("ignore")
             sol = system.minimize_proxy(
                 external_force=mean_pressure * 1.0, pentol=tol * h_rms, forcetol=tol * mean_pressure * pixel,
-                thermotol=tol, maxiter=100_000,
+                thermotol=tol, maxiter=max_iter,
             )
         dt = time.perf_counter() - t0
-        if not sol.success:
+        if not sol.success and int(sol.nit) < max_iter:
             raise RuntimeError(f"ContactMechanics did not converge: {sol.message}")
-        return Solution(np.asarray(sol.jac).reshape(n) / pixel, int(sol.nit), dt)
+        return Solution(np.asarray(sol.jac).reshape(n) / pixel, int(sol.nit), dt, bool(sol.success))
 
 
 PEERS = {"contactlib": Contactlib, "tamaas": Tamaas, "contactmechanics": ContactMechanicsPeer}
@@ -324,7 +330,7 @@ def memory_probe(args) -> None:
         with open("/proc/self/clear_refs", "w") as f:
             f.write("5")  # reset the high-water mark to the current RSS
         base = _rss_kib("VmRSS")
-        sol = peer.solve(heights, args.probe_pressure, args.probe_tol)
+        sol = peer.solve(heights, args.probe_pressure, args.probe_tol, max_iter=args.probe_max_iter)
         peak = _rss_kib("VmHWM")
     except OSError:
         import psutil
@@ -340,7 +346,7 @@ def memory_probe(args) -> None:
 
         th = threading.Thread(target=sample, daemon=True)
         th.start()
-        sol = peer.solve(heights, args.probe_pressure, args.probe_tol)
+        sol = peer.solve(heights, args.probe_pressure, args.probe_tol, max_iter=args.probe_max_iter)
         stop.set()
         th.join()
         peak = max(samples + [proc.memory_info().rss // 1024])
@@ -353,6 +359,7 @@ def peak_memory(peer: str, heights: np.ndarray, p: float, tol: float, threads: i
         np.save(path, heights)
         cmd = [sys.executable, __file__, "--_probe", "--probe-peer", peer, "--probe-surface", str(path),
                "--probe-pressure", repr(p), "--probe-tol", repr(tol), "--probe-threads", str(threads),
+               "--probe-max-iter", str(args.memory_max_iter),
                "--E", repr(args.E), "--nu", repr(args.nu)]
         out = subprocess.run(cmd, capture_output=True, text=True)
     lines = [ln for ln in out.stdout.splitlines() if ln.startswith("{")]
@@ -386,11 +393,23 @@ class Row:
     pressure_rel_l2_vs_contactlib: float = 0.0
     time_ratio_contactlib_over_this: float = float("nan")
     ladder: list = field(default_factory=list)
+    converged: bool = True
+    time_is_lower_bound: bool = False  # stopped by the time budget with an error above contactlib's
 
 
 def timed(peer: Peer, heights, p, tol, repeats) -> tuple[list[float], Solution]:
     sols = [peer.solve(heights, p, tol) for _ in range(repeats)]
     return [s.seconds for s in sols], sols[-1]
+
+
+def iteration_cap(peer: Peer, heights, p, budget: float | None) -> int:
+    """Most iterations that fit ``budget`` seconds: time per iteration from two short capped solves
+    (5 and 15 iterations; their difference removes the set-up cost)."""
+    if not budget:
+        return 100_000
+    short, longer = (peer.solve(heights, p, 1e-30, max_iter=k) for k in (5, 15))
+    per_iter = max(longer.seconds - short.seconds, 1e-9) / max(longer.iterations - short.iterations, 1)
+    return max(20, int(budget / per_iter))
 
 
 def bench_case(n, heights, target, threads, args, log) -> list[Row]:
@@ -399,8 +418,8 @@ def bench_case(n, heights, target, threads, args, log) -> list[Row]:
     p, a_cal = pressure_for_area(ours, heights, target, args)
     log(f"  N={n} threads={threads} target A={target}: mean pressure {p:.6g} (A={a_cal:.4f}), FFT pair {pair*1e3:.3f} ms")
     ref, ref_residual = ours.reference(heights, p, args.ref_tol)
-    ours.solve(heights, p, args.tol)  # warm-up (planning is cached anyway)
-    times, sol = timed(ours, heights, p, args.tol, args.repeats)
+    warm = ours.solve(heights, p, args.tol)  # warm-up (planning is cached anyway)
+    times, sol = timed(ours, heights, p, args.tol, 1 if warm.seconds > args.single_above else args.repeats)
     err_ours = rel_l2(sol.pressure, ref.pressure)
     t_iter = float(np.median(times)) / max(sol.iterations, 1)
     base = Row("contactlib", n, threads, target, p, args.tol, float(np.median(times)), times, sol.iterations, pair,
@@ -413,29 +432,39 @@ def bench_case(n, heights, target, threads, args, log) -> list[Row]:
         if name == "contactlib" or not PEERS[name].available():
             continue
         peer = PEERS[name](args.E, args.nu, threads)
-        steps, chosen = [], None
+        cap = iteration_cap(peer, heights, p, args.peer_budget)
+        steps, chosen, last = [], None, None
         for tol in ladder(max(err_ours, 1e-14)):
-            s = peer.solve(heights, p, tol)
-            e = rel_l2(s.pressure, ref.pressure)
-            steps.append({"tol": tol, "pressure_error": e, "iterations": s.iterations, "time_s": s.seconds})
-            log(f"    {name} tol {tol:.2e}: error {e:.2e}, {s.iterations} it, {s.seconds:.2f} s")
+            last = peer.solve(heights, p, tol, max_iter=cap)
+            e = rel_l2(last.pressure, ref.pressure)
+            steps.append({"tol": tol, "pressure_error": e, "iterations": last.iterations, "time_s": last.seconds,
+                          "converged": last.converged})
+            log(f"    {name} tol {tol:.2e}: error {e:.2e}, {last.iterations} it, {last.seconds:.2f} s"
+                + ("" if last.converged else f" (stopped by the {cap}-iteration cap of the time budget)"))
             if e <= err_ours:
                 chosen = tol
                 break
-            if len(steps) >= args.max_ladder:
+            if not last.converged or len(steps) >= args.max_ladder:
                 break
+        lower_bound = chosen is None and not last.converged
         if chosen is None:
-            log(f"    {name}: no tolerance on the ladder reached error {err_ours:.2e}; using the tightest tried")
+            log(f"    {name}: no tolerance on the ladder reached error {err_ours:.2e}; "
+                + ("its time is a lower bound" if lower_bound else "using the tightest tried"))
             chosen = steps[-1]["tol"]
-        times, s = timed(peer, heights, p, chosen, args.repeats)
+        if lower_bound or last.seconds > args.single_above:
+            times, s = [last.seconds], last  # one long solve: the ladder's own run is the measurement
+        else:
+            times, s = timed(peer, heights, p, chosen, args.repeats)
         t_iter = float(np.median(times)) / max(s.iterations, 1)
         rows.append(Row(name, n, threads, target, p, chosen, float(np.median(times)), times, s.iterations, pair,
                         t_iter / pair, (t_iter - peer.fft_pairs_per_iteration * pair) / t_iter, area(s.pressure),
-                        rel_l2(s.pressure, ref.pressure), ref_residual, ladder=steps,
+                        rel_l2(s.pressure, ref.pressure), ref_residual, ladder=steps, converged=s.converged,
+                        time_is_lower_bound=lower_bound,
                         area_rel_diff_vs_contactlib=(base.contact_area - area(s.pressure)) / area(s.pressure),
                         pressure_rel_l2_vs_contactlib=rel_l2(sol.pressure, s.pressure),
                         time_ratio_contactlib_over_this=base.time_s / float(np.median(times))))
-        log(f"    {name}: {rows[-1].time_s:.3f} s at tol {chosen:.2e}, ratio contactlib/{name} {rows[-1].time_ratio_contactlib_over_this:.3f}")
+        log(f"    {name}: {rows[-1].time_s:.3f} s at tol {chosen:.2e}, ratio contactlib/{name} "
+            f"{'<= ' if lower_bound else ''}{rows[-1].time_ratio_contactlib_over_this:.3f}")
     if args.memory:
         for row in rows:
             mem = peak_memory(row.solver, heights, p, row.tol, threads, args)
@@ -484,10 +513,14 @@ def markdown(rows: list[Row], info: dict, args) -> str:
             f"- accuracy: pressure error = rel. L2 vs contactlib at tol {args.ref_tol:g} (or the smallest residual it "
             "reaches in 3000 iterations: column ref res); peers' tolerance tightened "
             f"(half decades) until their error <= contactlib's at tol {args.tol:g}",
-            f"- time: median of {args.repeats} after a warm-up; FFT pair = planned pyfftw rfft+irfft of the grid; "
+            f"- time: median of {args.repeats} after a warm-up (one run when a solve takes over {args.single_above:g} s)"
+            + (f"; peers capped at the iterations that fit {args.peer_budget:g} s: '>' marks a peer stopped by the cap "
+               "with its pressure error still above contactlib's, so its time is a lower bound and the ratio an upper one"
+               if args.peer_budget else "") + "; FFT pair = planned pyfftw rfft+irfft of the grid; "
             "non-FFT share = (t_iter - k pairs)/t_iter, k = 2.5 for contactlib (K p, preconditioner, forward FFT of t), 2 for the peers",
-            "- peak memory: fresh subprocess, peak RSS during one solve minus RSS after imports and surface load "
-            f"({rows[0].memory_method or 'not measured'})", ""]
+            "- peak memory: fresh subprocess, peak RSS during one solve"
+            + (f" (its first {args.memory_max_iter} iterations)" if args.memory_max_iter < 100_000 else "")
+            + f" minus RSS after imports and surface load ({rows[0].memory_method or 'not measured'})", ""]
     out.append("| solver | N | thr | A target | A | tol | error | ref res | time [s] | iter | t_iter/FFT pair | non-FFT | "
                "peak [MiB] | t_ours/t_peer | dA rel | dp L2 |")
     out.append("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
@@ -495,9 +528,10 @@ def markdown(rows: list[Row], info: dict, args) -> str:
         peer = r.solver != "contactlib"
         out.append(
             f"| {r.solver} | {r.n} | {r.threads} | {r.target_area:g} | {r.contact_area:.4f} | {r.tol:.1e} | "
-            f"{r.pressure_error:.1e} | {r.reference_residual:.0e} | {r.time_s:.3f} | {r.iterations} | {r.iter_over_fft_pair:.1f} | "
+            f"{r.pressure_error:.1e} | {r.reference_residual:.0e} | {'> ' if r.time_is_lower_bound else ''}{r.time_s:.3f} | "
+            f"{'> ' if r.time_is_lower_bound else ''}{r.iterations} | {r.iter_over_fft_pair:.1f} | "
             f"{100 * r.non_fft_share:.0f} % | {r.peak_mib:.1f} | "
-            f"{f'{r.time_ratio_contactlib_over_this:.3f}' if peer else ''} | "
+            f"{(('< ' if r.time_is_lower_bound else '') + f'{r.time_ratio_contactlib_over_this:.3f}') if peer else ''} | "
             f"{f'{r.area_rel_diff_vs_contactlib:.1e}' if peer else ''} | "
             f"{f'{r.pressure_rel_l2_vs_contactlib:.1e}' if peer else ''} |")
     out += ["", "error: pressure rel. L2 vs the tight reference; t_ours/t_peer: contactlib time over this solver's "
@@ -518,6 +552,13 @@ def parse(argv=None):
     ap.add_argument("--ref-tol", type=float, default=1e-12)
     ap.add_argument("--max-ladder", type=int, default=8, help="most tolerances tried per peer")
     ap.add_argument("--no-memory", dest="memory", action="store_false", help="skip the peak-memory subprocesses")
+    ap.add_argument("--memory-max-iter", type=int, default=100_000,
+                    help="iterations of the peak-memory solve (every solver allocates its arrays before iterating)")
+    ap.add_argument("--peer-budget", type=float, default=None,
+                    help="seconds a peer solve may take: it is capped at the iterations that fit, and when the cap "
+                         "stops it short of contactlib's accuracy its time is reported as a lower bound")
+    ap.add_argument("--single-above", type=float, default=60.0,
+                    help="a solve longer than this many seconds is timed once, not --repeats times")
     ap.add_argument("--hurst", type=float, default=0.8)
     ap.add_argument("--q-roll", type=float, default=4.0)
     ap.add_argument("--cutoff-fraction", type=float, default=1 / 8, help="q_cutoff = fraction * N")
@@ -532,6 +573,7 @@ def parse(argv=None):
     ap.add_argument("--probe-pressure", type=float, help=argparse.SUPPRESS)
     ap.add_argument("--probe-tol", type=float, help=argparse.SUPPRESS)
     ap.add_argument("--probe-threads", type=int, default=1, help=argparse.SUPPRESS)
+    ap.add_argument("--probe-max-iter", type=int, default=100_000, help=argparse.SUPPRESS)
     ap.add_argument("--_probe", action="store_true", help=argparse.SUPPRESS)
     return ap.parse_args(argv)
 
