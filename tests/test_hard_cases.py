@@ -126,6 +126,19 @@ def test_heights_from_1e_minus_9_to_1e3_same_dimensionless_answer():
         assert float(out.penetration) / s == pytest.approx(float(ref.penetration), rel=1e-8)
 
 
+@pytest.mark.parametrize("modulus", [1e-6, 1e3, 2e11])
+def test_moduli_from_1e_minus_6_to_2e11_pa_same_dimensionless_answer(modulus):
+    """Pressures scale with E*: the iteration, re-entry included, must be blind to the unit system."""
+    base = contactlib.surfaces.self_affine(128, hurst=0.8, q_roll=2, q_cutoff=32, rms_slope=0.1, seed=1)
+    ref = contactlib.solve(base, E=E, nu=NU, mean_pressure=0.02 * E, tol=1e-9)
+    for s in (1e-9, 1e3):
+        out = contactlib.solve(base * s, E=modulus, nu=NU, mean_pressure=0.02 * modulus * s, tol=1e-9)
+        assert int(out.iterations) == int(ref.iterations)
+        assert float(out.contact_area) == float(ref.contact_area)
+        assert float(out.penetration) / s == pytest.approx(float(ref.penetration), rel=1e-8)
+        assert float(out.pressure.max()) / (modulus * s) == pytest.approx(float(ref.pressure.max()) / E, rel=1e-8)
+
+
 def test_non_periodic_contact_reaching_the_window_edge_is_refused():
     h = contactlib.surfaces.paraboloid(64, radius=1.0)
     with pytest.raises(ValueError, match="edge of the window"):

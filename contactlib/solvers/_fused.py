@@ -91,9 +91,9 @@ def contact_sums(r, t, offset, p):
 
 
 @_jit
-def step_project_reenter(p, factor, t, g, approach, tau, dest):
+def step_project_reenter(p, factor, t, g, approach, tau, tau_reenter, dest):
     """``p = factor p - tau t``, projected on ``p >= 0``, points where the gap ``g - approach`` is
-    negative re-entered with ``p = -tau gap``; ``dest[...] = p``. Returns (sum p, number of
+    negative re-entered with ``p = -tau_reenter gap``; ``dest[...] = p``. Returns (sum p, number of
     re-entered points, sum of ``t`` over the new contact set)."""
     psum = 0.0
     n_ol = 0
@@ -104,7 +104,7 @@ def step_project_reenter(p, factor, t, g, approach, tau, dest):
             v = factor * p[i, j] - tau * tv
             gv = g[i, j] - approach
             reenter = v <= 0.0 and gv < 0.0
-            v = -tau * gv if reenter else max(v, 0.0)
+            v = -tau_reenter * gv if reenter else max(v, 0.0)
             n_ol += 1 if reenter else 0
             t_kept += tv if v > 0.0 else 0.0
             p[i, j] = v

@@ -69,6 +69,10 @@ def solve_polonsky_keer(
     scale = height_scale(heights)
     n = heights.size
     self_compliance = operator.self_compliance()
+    # Re-entry sets p = -tau gap (Polonsky & Keer). Preconditioned, t is a pressure and tau is
+    # dimensionless, so the gap is turned into a pressure by the element's own stiffness: without
+    # it, re-entered pressures scaled with 1/E* and solves with E ~ 1e-6 Pa never converged.
+    reentry = 1.0 / self_compliance if precondition else 1.0
 
     if load_control:
         if mean_pressure == 0:
@@ -123,7 +127,7 @@ def solve_polonsky_keer(
         gt = fz.conjugate_direction(z, shift, g, approach, p, beta, t, fz.as2d(operator.load()))[1]
         tKt = operator.quadratic_form()  # <t, K t> by Parseval: no inverse transform
         tau = gt / tKt if tKt > 0 else 1.0 / self_compliance
-        psum, n_overlap, t_kept = fz.step_project_reenter(p, factor, t, g, approach, tau,
+        psum, n_overlap, t_kept = fz.step_project_reenter(p, factor, t, g, approach, tau, tau * reentry,
                                                           fz.as2d(operator.load()))
         restart = n_overlap > 0
         if load_control:
