@@ -290,7 +290,8 @@ def speed_error_point(*, scene: str, n: int, tol: float, kernel: str, E: float, 
         errors["area_error"] = _rel(out.contact_area, contact_fraction)
         errors["pressure_error"] = _l2(out.pressure, exact)
     elif scene == "wavy_2d":
-        p_mean = full_contact_margin * E_star * 2 * math.pi * math.sqrt(2) * amplitude / 2
+        p_mean = full_contact_margin * westergaard.full_contact_pressure(amplitude=amplitude, wavelength=1.0,
+                                                                         E_star=E_star, wavelength_y=1.0)
         out, wall = _timed_solve(surfaces.wavy(n, length=1.0, amplitude=amplitude, dim=2), mean_pressure=p_mean, **kw)
         x = out.x.values
         exact = westergaard.full_contact_field(x[:, None], x[None, :], mean_pressure=p_mean, amplitude=amplitude,

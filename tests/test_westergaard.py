@@ -50,6 +50,18 @@ def test_full_contact_eggbox_2d(material, n):
     np.testing.assert_allclose(out.pressure.values, exact, rtol=0, atol=1e-9 * p_mean)
 
 
+def test_eggbox_full_contact_threshold_2d(material):
+    """p* = sqrt(2) pi E* amplitude / wavelength: 3 % below it the troughs stay open, 3 % above they close."""
+    h = contactlib.surfaces.wavy(64, amplitude=0.01, dim=2)
+    p_star = westergaard.full_contact_pressure(amplitude=0.01, wavelength=1.0, E_star=material["E_star"],
+                                               wavelength_y=1.0)
+    assert p_star == pytest.approx(np.sqrt(2) * np.pi * material["E_star"] * 0.01)
+    below = contactlib.solve(h, E=material["E"], nu=material["nu"], mean_pressure=0.97 * p_star, tol=1e-10)
+    above = contactlib.solve(h, E=material["E"], nu=material["nu"], mean_pressure=1.03 * p_star, tol=1e-10)
+    assert float(below.contact_area) < 1.0
+    assert float(above.contact_area) == 1.0
+
+
 def test_beyond_full_contact_returns_full_contact_state(material):
     h = contactlib.surfaces.wavy(256, amplitude=0.01)
     p_star = westergaard.full_contact_pressure(amplitude=0.01, wavelength=1.0, E_star=material["E_star"])

@@ -8,9 +8,18 @@ from __future__ import annotations
 import numpy as np
 
 
-def full_contact_pressure(*, amplitude: float, wavelength: float, E_star: float) -> float:
-    """Mean pressure p* = pi E* amplitude / wavelength at which the 1D contact becomes complete."""
-    return np.pi * E_star * amplitude / wavelength
+def full_contact_pressure(*, amplitude: float, wavelength: float, E_star: float,
+                          wavelength_y: float | None = None) -> float:
+    """Mean pressure at which the contact becomes complete: ``p* = E* |q| amplitude / 2``, where the
+    full-contact field (:func:`full_contact_field`) first touches zero at the troughs.
+
+    1D: ``p* = pi E* amplitude / wavelength``; 2D egg-box ``amplitude cos(qx x) cos(qy y)`` (give
+    ``wavelength_y``, equal wavelengths: ``p* = sqrt(2) pi E* amplitude / wavelength``).
+    """
+    q = 2 * np.pi / wavelength
+    if wavelength_y is not None:
+        q = np.hypot(q, 2 * np.pi / wavelength_y)
+    return 0.5 * E_star * q * amplitude
 
 
 def mean_pressure(contact_fraction, *, amplitude: float, wavelength: float, E_star: float):
