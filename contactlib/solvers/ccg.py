@@ -126,7 +126,7 @@ def solve_polonsky_keer(
         shift = z_offset + ((z_sum + beta * t_kept) / n_contact if load_control else 0.0)
         gt = fz.conjugate_direction(z, shift, g, approach, p, beta, t, fz.as2d(operator.load()))[1]
         tKt = operator.quadratic_form()  # <t, K t> by Parseval: no inverse transform
-        tau = gt / tKt if tKt > 0 else 1.0 / self_compliance
+        tau = gt / tKt if tKt > 0 else 1.0 / (self_compliance * reentry)  # no direction: re-entry only
         psum, n_overlap, t_kept = fz.step_project_reenter(p, factor, t, g, approach, tau, tau * reentry,
                                                           fz.as2d(operator.load()))
         restart = n_overlap > 0
