@@ -72,7 +72,7 @@ def solve_polonsky_keer(
     # Re-entry sets p = -tau gap (Polonsky & Keer). Preconditioned, t is a pressure and tau is
     # dimensionless, so the gap needs a stiffness to become a pressure: without one, re-entered
     # pressures scaled with 1/E* and solves with E* ~ 1e-6 Pa never converged. The stiffness of the
-    # longest wave keeps re-entry gentle; an element's own stiffness (1/self-compliance, about n
+    # longest wave keeps re-entry gentle; an element's own stiffness (1/self-compliance, about n/4
     # times larger on n x n points) overshot and diverged at ~45 % contact.
     reentry = operator.longest_wave_stiffness() if precondition else 1.0
 
