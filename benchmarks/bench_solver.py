@@ -10,7 +10,10 @@ equal accuracy*:
   each peer's tolerance (which measures something else than our residual) is tightened over a
   half-decade ladder until its pressure error is no larger than ours. The ladder is reported.
 * time = median of ``--repeats`` solves after one warm-up solve of the same shape (FFTW planning
-  excluded: plans are cached per shape and wisdom on disk).
+  excluded: plans are cached per shape and wisdom on disk); one solve when it takes longer than
+  ``--single-above`` seconds. With ``--peer-budget`` a peer is capped at the iterations that fit
+  the budget, and a capped solve still short of contactlib's accuracy is reported as a lower
+  bound on its time.
 * FFT pair = median time of one planned pyfftw forward + inverse real FFT of the same grid
   (``contactlib.fft.get_fft(shape)``), measured in the same run. A Polonsky-Keer iteration needs
   two convolutions, contactlib's preconditioned one two and a half (``K p``, the preconditioner,
