@@ -77,25 +77,24 @@ class Compliance:
         self.multiplier = _unit_multiplier(grid, kernel, self.periodic) / self.E_star
         self._block = tuple(slice(0, n) for n in grid.shape)
         self._inverse = None
+        self._lowest_wavenumber = None  # set with _inverse
 
     @property
     def inverse_multiplier(self) -> np.ndarray:
         """The continuous half-space stiffness ``E*|q|/2`` on the work grid (normalised); its zero
         mode takes the lowest non-zero wavenumber's value so it stays definite."""
         if self._inverse is None:
-            q = self._work_wavenumber()
-            q.flat[0] = q.flat[1] if q.size > 1 else 1.0
+            q = Grid(self.work_shape, self.grid.lengths if self.periodic else self.grid.padded().lengths).wavenumber()
+            self._lowest_wavenumber = float(q.flat[1]) if q.size > 1 else 1.0
+            q.flat[0] = self._lowest_wavenumber
             self._inverse = fft.convolution_multiplier(self.E_star * q / 2, self.work_shape)
         return self._inverse
-
-    def _work_wavenumber(self) -> np.ndarray:
-        return Grid(self.work_shape, self.grid.lengths if self.periodic else self.grid.padded().lengths).wavenumber()
 
     def longest_wave_stiffness(self) -> float:
         """``E* q1 / 2`` [pressure/length] at the lowest non-zero wavenumber ``q1`` of the work grid:
         the preconditioner's stiffness for its longest wave (and for its zero mode)."""
-        q = self._work_wavenumber()
-        return self.E_star * float(q.flat[1] if q.size > 1 else 1.0) / 2
+        self.inverse_multiplier  # builds it once, with q1: the preconditioned solve needs it anyway
+        return self.E_star * self._lowest_wavenumber / 2
 
     def load(self) -> np.ndarray:
         """Writable view where the next input pressure goes (padding already zeroed)."""
