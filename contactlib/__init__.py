@@ -8,7 +8,7 @@ generate surfaces, :mod:`contactlib.analysis` to measure them and their contact 
 
 from . import accuracy, analysis, reference, surfaces
 from ._version import __version__
-from .contact import ConvergenceError, solve
+from .contact import ConvergenceError, solve, solve_tolerances
 from .grid import Grid
 
-__all__ = ["solve", "ConvergenceError", "Grid", "surfaces", "analysis", "reference", "accuracy", "__version__"]
+__all__ = ["solve", "solve_tolerances", "ConvergenceError", "Grid", "surfaces", "analysis", "reference", "accuracy", "__version__"]

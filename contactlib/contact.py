@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import math
 import time
 
@@ -29,12 +30,15 @@ class ConvergenceError(RuntimeError):
         The residual reached.
     dataset : xarray.Dataset
         The partial (unconverged) state, labelled like a converged one, ``attrs['converged'] = 0``.
+    datasets : list of xarray.Dataset or None
+        From :func:`solve_tolerances`: the answer at every tolerance asked, reached or not.
     """
 
     def __init__(self, message: str, *, residual: float, dataset: xr.Dataset):
         super().__init__(message)
         self.residual = residual
         self.dataset = dataset
+        self.datasets = None
 
 
 def grid_of(heights, length=None) -> tuple[np.ndarray, Grid, tuple[str, ...], dict]:
@@ -167,6 +171,148 @@ def solve(
     >>> 0 < float(out.contact_area) < 1
     True
     """
+    setup = _setup(heights, E=E, nu=nu, mean_pressure=mean_pressure, penetration=penetration, periodic=periodic,
+                   tol=tol, max_iter=max_iter, kernel=kernel, method=method, length=length,
+                   initial_pressure=initial_pressure, target_error=target_error)
+    start = time.perf_counter()
+    state = setup.run()
+    wall = time.perf_counter() - start
+    ds = setup.label(state, wall, length_unit=length_unit, pressure_unit=pressure_unit)
+    setup.check(state, ds)
+    return ds
+
+
+def solve_tolerances(
+    heights,
+    tols,
+    *,
+    E: float,
+    nu: float,
+    mean_pressure: float | None = None,
+    penetration: float | None = None,
+    periodic: bool = True,
+    max_iter: int = 10_000,
+    kernel: str = "spectral",
+    length=None,
+    initial_pressure=None,
+    length_unit: str = "m",
+    pressure_unit: str = "Pa",
+) -> list[xr.Dataset]:
+    """The answers of :func:`solve` at several tolerances, for the cost of the tightest one.
+
+    The conjugate-gradient iterates do not depend on ``tol`` (it only stops them), so one solve at
+    ``min(tols)`` passes through the state each looser solve would return: it is recorded at the
+    first iteration whose residual reaches that tolerance, bit for bit the same pressure, gap,
+    iterations and residual as ``solve(..., tol=t)``. Each Dataset's ``attrs['wall_time']`` is the
+    time to reach it [s] (its own labelling included, the recording of the others not), i.e. what
+    the separate solve would take. Arguments as :func:`solve` (``method="cg"`` only).
+
+    Returns
+    -------
+    list of xarray.Dataset
+        One per tolerance, in the order of ``tols``, ``attrs['tol']`` set to it.
+
+    Raises
+    ------
+    ConvergenceError
+        When a tolerance is not reached (``max_iter`` or a stall): ``err.datasets`` holds the whole
+        list, the unreached tolerances carrying the final state with ``attrs['converged'] = 0``.
+    """
+    tols = [float(t) for t in np.atleast_1d(np.asarray(tols, dtype=float))]
+    if not tols:
+        raise ValueError("tols must hold at least one tolerance")
+    for t in tols:  # the same check as solve's, with the parameter named
+        if not (math.isfinite(t) and t > 0):
+            raise ValueError(f"tols must be finite and > 0, got {t!r}")
+    setup = _setup(heights, E=E, nu=nu, mean_pressure=mean_pressure, penetration=penetration, periodic=periodic,
+                   tol=min(tols), max_iter=max_iter, kernel=kernel, method="cg", length=length,
+                   initial_pressure=initial_pressure, target_error=None)
+    pending = sorted(set(tols), reverse=True)
+    found: dict[float, tuple[ContactState, float]] = {}
+    paused = 0.0
+
+    def monitor(it, residual, snapshot):
+        nonlocal paused
+        if not pending or residual > pending[0]:
+            return
+        reached = time.perf_counter() - start - paused
+        t0 = time.perf_counter()
+        state = snapshot()
+        paused += time.perf_counter() - t0
+        while pending and residual <= pending[0]:
+            found[pending.pop(0)] = (state, reached)
+
+    start = time.perf_counter()
+    final = setup.run(monitor=monitor)
+    total = time.perf_counter() - start - paused
+    out, failed = [], None
+    for t in tols:
+        state, wall = found.get(t, (final, total))
+        state = dataclasses.replace(state, converged=bool(state.residual <= t))
+        t0 = time.perf_counter()
+        ds = setup.label(state, 0.0, length_unit=length_unit, pressure_unit=pressure_unit, tol=t)
+        ds.attrs["wall_time"] = wall + (time.perf_counter() - t0)
+        try:
+            setup.check(state, ds)
+        except ConvergenceError as err:
+            failed = failed or err
+        out.append(ds)
+    if failed is not None:
+        failed.datasets = out
+        raise failed
+    return out
+
+
+@dataclasses.dataclass
+class _Setup:
+    """A validated contact problem: its operator and solver arguments, and how to label the answer."""
+
+    values: np.ndarray
+    grid: Grid
+    dims: tuple
+    coords: dict
+    operator: Compliance
+    solver_args: dict
+    attrs: dict
+    method: str
+
+    def run(self, monitor=None) -> ContactState:
+        if self.method == "cg":
+            return solve_polonsky_keer(self.operator, self.values, monitor=monitor, **self.solver_args)
+        args = {k: v for k, v in self.solver_args.items() if k != "initial_pressure"}
+        return solve_active_set(self.operator, self.values, **args)
+
+    def label(self, state: ContactState, wall: float, *, length_unit: str, pressure_unit: str,
+              tol: float | None = None) -> xr.Dataset:
+        ds = to_dataset(state, dims=self.dims, coords=self.coords, length_unit=length_unit,
+                        pressure_unit=pressure_unit)
+        ds.attrs.update({"solver": state.solver, **self.attrs, "converged": int(state.converged), "wall_time": wall,
+                         "contactlib_version": __version__, "window_lengths": list(self.grid.lengths)})
+        if tol is not None:
+            ds.attrs["tol"] = tol
+        return ds
+
+    def check(self, state: ContactState, ds: xr.Dataset) -> None:
+        """Refuse a footprint cut by the window edge; raise :class:`ConvergenceError` if unconverged."""
+        if not self.operator.periodic and _touches_edge(state.pressure):
+            raise ValueError(
+                "periodic=False: the contact reaches the edge of the window, so the surface outside it would "
+                "carry load too; enlarge the window (or use periodic=True for a periodic surface)"
+            )
+        if not state.converged:
+            tol, max_iter = ds.attrs["tol"], self.solver_args["max_iter"]
+            stalled = state.solver == "polonsky-keer" and state.iterations < max_iter
+            raise ConvergenceError(
+                f"{state.solver} did not converge in {state.iterations} iterations: residual "
+                f"{state.residual:.3e} > tol {tol:.1e}"
+                + (" (stalled: no progress over the last iterations; round-off floor or an ill-posed scene)"
+                   if stalled else ""), residual=state.residual, dataset=ds,
+            )
+
+
+def _setup(heights, *, E, nu, mean_pressure, penetration, periodic, tol, max_iter, kernel, method, length,
+           initial_pressure, target_error) -> _Setup:
+    """Validate every argument of :func:`solve` and build the compliance operator."""
     values, grid, dims, coords = grid_of(heights, length)
     E_star = contact_modulus(E, nu)
     _check_loads(mean_pressure, penetration)
@@ -191,44 +337,20 @@ def solve(
             f"{values.max() - values.mean():.6g}); in a periodic window the load is then undetermined: "
             "give mean_pressure instead"
         )
-    operator = Compliance(grid, E_star=E_star, kernel=kernel, periodic=periodic)
-    start = time.perf_counter()
-    if method == "cg":
-        warm = None if initial_pressure is None else np.asarray(initial_pressure, dtype=float)
-        if warm is not None and warm.shape != values.shape:
+    warm = None
+    if method == "cg" and initial_pressure is not None:
+        warm = np.asarray(initial_pressure, dtype=float)
+        if warm.shape != values.shape:
             raise ValueError(f"initial_pressure has shape {warm.shape}, heights {values.shape}")
-        state = solve_polonsky_keer(
-            operator, values, mean_pressure=mean_pressure, penetration=penetration, tol=tol,
-            max_iter=int(max_iter), initial_pressure=warm,
-        )
-    else:
-        state = solve_active_set(operator, values, mean_pressure=mean_pressure, penetration=penetration,
-                                 tol=tol, max_iter=int(max_iter))
-    wall = time.perf_counter() - start
-    ds = to_dataset(state, dims=dims, coords=coords, length_unit=length_unit, pressure_unit=pressure_unit)
-    ds.attrs.update({
-        "solver": state.solver, "kernel": kernel, "periodic": int(periodic), "tol": tol,
-        "max_iter": int(max_iter), "E": float(E), "nu": float(nu), "E_star": E_star,
-        "load_control": "mean_pressure" if mean_pressure is not None else "penetration",
-        "converged": int(state.converged), "wall_time": wall, "contactlib_version": __version__,
-        "window_lengths": list(grid.lengths),
-    })
+    operator = Compliance(grid, E_star=E_star, kernel=kernel, periodic=periodic)
+    attrs = {"kernel": kernel, "periodic": int(periodic), "tol": tol, "max_iter": int(max_iter), "E": float(E),
+             "nu": float(nu), "E_star": E_star,
+             "load_control": "mean_pressure" if mean_pressure is not None else "penetration"}
     if target_error is not None:
-        ds.attrs["target_error"] = float(target_error)
-    if not periodic and _touches_edge(state.pressure):
-        raise ValueError(
-            "periodic=False: the contact reaches the edge of the window, so the surface outside it would "
-            "carry load too; enlarge the window (or use periodic=True for a periodic surface)"
-        )
-    if not state.converged:
-        stalled = state.solver == "polonsky-keer" and state.iterations < int(max_iter)
-        raise ConvergenceError(
-            f"{state.solver} did not converge in {state.iterations} iterations: residual "
-            f"{state.residual:.3e} > tol {tol:.1e}"
-            + (" (stalled: no progress over the last iterations; round-off floor or an ill-posed scene)"
-               if stalled else ""), residual=state.residual, dataset=ds,
-        )
-    return ds
+        attrs["target_error"] = float(target_error)
+    solver_args = {"mean_pressure": mean_pressure, "penetration": penetration, "tol": tol,
+                   "max_iter": int(max_iter), "initial_pressure": warm}
+    return _Setup(values, grid, dims, coords, operator, solver_args, attrs, method)
 
 
 def _touches_edge(pressure: np.ndarray) -> bool:

@@ -4,7 +4,8 @@ Each ``*_point`` takes the swept parameters and the study's constants as keyword
 constants with ``functools.partial``) and calls only the public API. :data:`STUDIES` maps a study
 name to its point function, the FFT shapes it plans, and optionally ``path_dim`` (a load path walked
 with warm starts) or ``group_dims`` (names whose points share one task and its in-process caches,
-e.g. the rough reference of ``speed_vs_error``).
+e.g. the rough reference of ``speed_vs_error``), and ``ladder_dim``: a swept name whose values are
+also passed whole as ``<name>_ladder`` (``speed_vs_error`` solves once for every ``tol``).
 """
 
 from __future__ import annotations
@@ -13,13 +14,12 @@ import functools
 import inspect
 import itertools
 import math
-import time
 
 import numpy as np
 import xarray as xr
 
 from . import accuracy, analysis, surfaces
-from .contact import ConvergenceError, solve
+from .contact import ConvergenceError, solve, solve_tolerances
 from .materials import contact_modulus
 from .reference import hertz, westergaard
 from .sweep import SWEEP_VARIABLES
@@ -164,16 +164,18 @@ SCENES = ("hertz", "westergaard_1d", "wavy_2d", "rough")
 """Scenes of :func:`speed_error_point`; all but ``westergaard_1d`` are 2D."""
 
 
-def _timed_solve(h, **kw) -> tuple[xr.Dataset, float]:
-    """``solve`` timed alone, after an untimed one-iteration call has built (and cached) the kernel
-    and planned the FFTs of this grid, so ``solve_time`` is the solve and not the set-up."""
+def _timed_solves(h, tols, **kw) -> list[xr.Dataset]:
+    """:func:`solve_tolerances` at ``tols``, after an untimed one-iteration solve has built (and
+    cached) the kernel and planned the FFTs of this grid: ``attrs['wall_time']`` is the solve, not the
+    set-up. Unreached tolerances come back with ``attrs['converged'] = 0``."""
     try:
         solve(h, **{**kw, "max_iter": 1, "tol": 0.5})
     except ConvergenceError:
         pass
-    start = time.perf_counter()
-    out = solve(h, **kw)
-    return out, time.perf_counter() - start
+    try:
+        return solve_tolerances(h, tols, **kw)
+    except ConvergenceError as err:
+        return err.datasets
 
 
 def _l2(p, exact) -> float:
@@ -227,7 +229,7 @@ def speed_error_point(*, scene: str, n: int, tol: float, kernel: str, E: float, 
                       radius: float, contact_fraction: float, amplitude: float, full_contact_margin: float,
                       hurst: float, seed: int, q_low: float, q_roll: float, q_cutoff: float, rms_slope: float,
                       reduced_pressure: float, n_max_2d: int, n_max_rough: int, reference_factor: int = 4,
-                      reference_tol: float = 1e-12) -> dict:
+                      reference_tol: float = 1e-12, tol_ladder: tuple | list | None = None) -> dict:
     """Errors and wall time of one solve of a scene with a known answer, at grid ``n``, ``tol``, ``kernel``.
 
     Scenes (window L = 1; relative errors; NaN where a quantity is prescribed or undefined):
@@ -255,6 +257,12 @@ def speed_error_point(*, scene: str, n: int, tol: float, kernel: str, E: float, 
     ``L / q_cutoff`` (rough), the contact radius (hertz), the contact half-width (westergaard_1d), the
     wavelength (wavy_2d). Errors against it give the convergence orders of :mod:`contactlib.accuracy`.
 
+    ``tol_ladder`` (every ``tol`` of the grid) makes one :func:`contactlib.solve_tolerances` run per
+    scene, ``n`` and ``kernel`` serve all its tolerances (cached in the task's process): the iterates
+    do not depend on ``tol``, so each point gets exactly the answer and iterations of its own solve,
+    and ``solve_time`` the time that solve takes to reach it, at the cost of the tightest tolerance
+    alone. Without it each point solves on its own.
+
     Returns
     -------
     dict
@@ -262,6 +270,38 @@ def speed_error_point(*, scene: str, n: int, tol: float, kernel: str, E: float, 
         defined one), ``solve_time`` (``contactlib.solve`` alone, kernel set-up excluded),
         ``iterations``, ``residual``, ``resolution``, ``reference_residual`` (rough only).
     """
+    scene_args = {"scene": scene, "n": n, "kernel": kernel, "E": E, "nu": nu, "max_iter": max_iter,
+                  "radius": radius, "contact_fraction": contact_fraction, "amplitude": amplitude,
+                  "full_contact_margin": full_contact_margin, "hurst": hurst, "seed": seed, "q_low": q_low,
+                  "q_roll": q_roll, "q_cutoff": q_cutoff, "rms_slope": rms_slope,
+                  "reduced_pressure": reduced_pressure, "n_max_2d": n_max_2d, "n_max_rough": n_max_rough,
+                  "reference_factor": reference_factor, "reference_tol": reference_tol}
+    if tol_ladder is None:
+        return _speed_error_results(tols=(tol,), **scene_args)[tol].result()
+    if tol not in tol_ladder:
+        raise ValueError(f"tol={tol!r} is not in tol_ladder={tuple(tol_ladder)}")
+    return _speed_error_results(tols=tuple(sorted(tol_ladder)), **scene_args)[tol].result()
+
+
+class _Outcome:
+    """One point's result, or the convergence failure its own solve would raise (re-raised per point)."""
+
+    def __init__(self, values: dict | None = None, error: ConvergenceError | None = None):
+        self.values, self.error = values, error
+
+    def result(self) -> dict:
+        if self.error is not None:
+            raise self.error
+        return dict(self.values)
+
+
+@functools.lru_cache(maxsize=2)
+def _speed_error_results(*, tols: tuple, scene: str, n: int, kernel: str, E: float, nu: float, max_iter: int,
+                         radius: float, contact_fraction: float, amplitude: float, full_contact_margin: float,
+                         hurst: float, seed: int, q_low: float, q_roll: float, q_cutoff: float, rms_slope: float,
+                         reduced_pressure: float, n_max_2d: int, n_max_rough: int, reference_factor: int,
+                         reference_tol: float) -> dict:
+    """tol -> :class:`_Outcome` of the scene at ``n`` and ``kernel``, all ``tols`` from one solve."""
     if scene not in SCENES:
         raise ValueError(f"scene must be one of {SCENES}, got {scene!r}")
     if scene != "westergaard_1d" and n > n_max_2d:
@@ -269,50 +309,66 @@ def speed_error_point(*, scene: str, n: int, tol: float, kernel: str, E: float, 
     if scene == "rough" and not 2 * q_cutoff < n <= n_max_rough:
         raise ValueError(f"rough: n={n} outside (2 q_cutoff, n_max_rough] = ({2 * q_cutoff:g}, {n_max_rough}]")
     E_star = contact_modulus(E, nu)
-    kw = {"E": E, "nu": nu, "tol": tol, "max_iter": max_iter, "kernel": kernel}
-    errors = dict.fromkeys(("load_error", "area_error", "pressure_error", "gap_error"), math.nan)
+    kw = {"E": E, "nu": nu, "max_iter": max_iter, "kernel": kernel}
+    ref = None
     if scene == "hertz":
         a = contact_fraction / 4.0
         depth = a * a / radius
-        out, wall = _timed_solve(surfaces.paraboloid(n, length=1.0, radius=radius), penetration=depth,
-                                 periodic=False, **kw)
-        load = hertz.sphere_load(depth, radius=radius, E_star=E_star)
-        x = out.x.values - 0.5
-        r = np.hypot(x[:, None], x[None, :])
-        errors["load_error"] = _rel(out.mean_pressure, load)
-        errors["area_error"] = _rel(out.contact_area, math.pi * a * a)
-        errors["pressure_error"] = _l2(out.pressure, hertz.sphere_pressure(r, load=load, radius=radius, E_star=E_star))
+        h, load = surfaces.paraboloid(n, length=1.0, radius=radius), {"penetration": depth, "periodic": False}
+        total = hertz.sphere_load(depth, radius=radius, E_star=E_star)
+        x = h.x.values - 0.5
+        exact = hertz.sphere_pressure(np.hypot(x[:, None], x[None, :]), load=total, radius=radius, E_star=E_star)
+
+        def errors(out):
+            return {"load_error": _rel(out.mean_pressure, total), "area_error": _rel(out.contact_area, math.pi * a * a),
+                    "pressure_error": _l2(out.pressure, exact)}
     elif scene == "westergaard_1d":
         p_mean = float(westergaard.mean_pressure(contact_fraction, amplitude=amplitude, wavelength=1.0, E_star=E_star))
-        out, wall = _timed_solve(surfaces.wavy(n, length=1.0, amplitude=amplitude, dim=1), mean_pressure=p_mean, **kw)
-        exact = westergaard.partial_contact_pressure(out.x.values, mean_pressure=p_mean, amplitude=amplitude,
+        h, load = surfaces.wavy(n, length=1.0, amplitude=amplitude, dim=1), {"mean_pressure": p_mean}
+        exact = westergaard.partial_contact_pressure(h.x.values, mean_pressure=p_mean, amplitude=amplitude,
                                                      wavelength=1.0, E_star=E_star)
-        errors["area_error"] = _rel(out.contact_area, contact_fraction)
-        errors["pressure_error"] = _l2(out.pressure, exact)
+
+        def errors(out):
+            return {"area_error": _rel(out.contact_area, contact_fraction), "pressure_error": _l2(out.pressure, exact)}
     elif scene == "wavy_2d":
         p_mean = full_contact_margin * westergaard.full_contact_pressure(amplitude=amplitude, wavelength=1.0,
                                                                          E_star=E_star, wavelength_y=1.0)
-        out, wall = _timed_solve(surfaces.wavy(n, length=1.0, amplitude=amplitude, dim=2), mean_pressure=p_mean, **kw)
-        x = out.x.values
+        h, load = surfaces.wavy(n, length=1.0, amplitude=amplitude, dim=2), {"mean_pressure": p_mean}
+        x = h.x.values
         exact = westergaard.full_contact_field(x[:, None], x[None, :], mean_pressure=p_mean, amplitude=amplitude,
                                                wavelength=1.0, E_star=E_star)
-        errors["pressure_error"] = _l2(out.pressure, exact)
+
+        def errors(out):
+            return {"pressure_error": _l2(out.pressure, exact)}
     else:
         spectrum = {"hurst": hurst, "seed": seed, "q_low": q_low, "q_roll": q_roll, "q_cutoff": q_cutoff,
                     "rms_slope": rms_slope}
         ref = rough_reference(n=n, factor=reference_factor, tol=reference_tol, reduced_pressure=reduced_pressure,
                               E=E, nu=nu, max_iter=min(max_iter, REFERENCE_MAX_ITER), **spectrum)
         h = surfaces.resample(rough_master(**spectrum), n)
-        out, wall = _timed_solve(h, mean_pressure=reduced_pressure * E_star * rms_slope, **kw)
-        errors["area_error"] = _rel(out.contact_area, ref["contact_area"])
-        errors["gap_error"] = _rel(out.gap.mean(), ref["mean_gap"])
-        errors["pressure_error"] = _l2(out.pressure, ref["pressure"])
-    defined = [v for v in errors.values() if not math.isnan(v)]
+        load = {"mean_pressure": reduced_pressure * E_star * rms_slope}
+
+        def errors(out):
+            return {"area_error": _rel(out.contact_area, ref["contact_area"]),
+                    "gap_error": _rel(out.gap.mean(), ref["mean_gap"]),
+                    "pressure_error": _l2(out.pressure, ref["pressure"])}
     length = {"hertz": contact_fraction / 4, "westergaard_1d": contact_fraction / 2, "wavy_2d": 1.0,
               "rough": 1.0 / q_cutoff}[scene]
-    return {**errors, "max_error": max(defined), "solve_time": wall, "iterations": float(out.iterations),
+    outcomes = {}
+    for tol, out in zip(tols, _timed_solves(h, tols, **kw, **load)):
+        if out.attrs["converged"] != 1:
+            outcomes[tol] = _Outcome(error=ConvergenceError(
+                f"did not converge in {int(out.iterations)} iterations: residual {float(out.residual):.3e} > "
+                f"tol {tol:.1e}", residual=float(out.residual), dataset=None))
+            continue
+        found = dict.fromkeys(("load_error", "area_error", "pressure_error", "gap_error"), math.nan)
+        found.update(errors(out))
+        outcomes[tol] = _Outcome({
+            **found, "max_error": max(v for v in found.values() if not math.isnan(v)),
+            "solve_time": float(out.attrs["wall_time"]), "iterations": float(out.iterations),
             "residual": float(out.residual), "resolution": n * length,
-            "reference_residual": ref["residual"] if scene == "rough" else math.nan}
+            "reference_residual": ref["residual"] if ref is not None else math.nan})
+    return outcomes
 
 
 def speed_error_shapes(grid: dict, constants: dict) -> list[tuple[int, ...]]:
@@ -335,7 +391,7 @@ STUDIES = {
     "anisotropy": {"point": anisotropy_point, "fft_shapes": lambda grid, c: [(c["n"], c["n"])]},
 }
 STUDIES["speed_vs_error"] = {"point": speed_error_point, "fft_shapes": speed_error_shapes,
-                              "group_dims": ("kernel", "tol")}
+                              "group_dims": ("kernel", "tol"), "ladder_dim": "tol"}
 STUDIES["area_load"]["surface_keys"] = ("hurst", "seed")
 STUDIES["anisotropy"]["surface_keys"] = ("anisotropy", "seed")
 

@@ -170,3 +170,30 @@ def test_group_dims_share_one_task_and_give_the_same_dataset():
 def _points(grid):
     _, points = sweep.grid_points(grid)
     return points, [sweep.point_key(p) for p in points]
+
+
+@pytest.mark.parametrize("scene, n", [("hertz", 64), ("rough", 32), ("westergaard_1d", 256)])
+def test_tolerance_ladder_gives_each_point_its_own_solves_answer(scene, n):
+    """The study's one-solve-per-ladder path: same errors and iterations as solving each tol alone."""
+    ladder = (1e-4, 1e-8, 1e-12)
+    for tol in ladder:
+        alone, shared = point(scene, n, tol=tol), point(scene, n, tol=tol, tol_ladder=ladder)
+        for name in ("load_error", "area_error", "pressure_error", "gap_error", "iterations", "residual",
+                     "reference_residual"):
+            assert alone[name] == shared[name] or (math.isnan(alone[name]) and math.isnan(shared[name])), name
+        assert shared["residual"] <= tol and shared["solve_time"] > 0
+    with pytest.raises(ValueError, match="tol_ladder"):
+        point(scene, n, tol=1e-6, tol_ladder=ladder)
+
+
+def test_tolerance_ladder_reports_unreached_tolerances_as_not_converged():
+    ladder = (1e-4, 1e-12)
+    loose = point("hertz", 64, tol=1e-4)
+    cap = int(loose["iterations"]) + 2
+    assert point("hertz", 64, tol=1e-4, tol_ladder=ladder, max_iter=cap)["iterations"] == loose["iterations"]
+    with pytest.raises(contactlib.ConvergenceError, match="did not converge") as info:
+        point("hertz", 64, tol=1e-12, tol_ladder=ladder, max_iter=cap)
+    assert info.value.residual > 1e-12
+    result = sweep.evaluate_point(point, {"scene": "hertz", "n": 64, "tol": 1e-12, "tol_ladder": ladder,
+                                          "max_iter": cap})
+    assert result["status"] == sweep.STATUS_NOT_CONVERGED and result["residual"] > 1e-12

@@ -15,6 +15,8 @@ pressure is kept unnormalised and scaled to the load inside the sweeps.
 
 from __future__ import annotations
 
+from collections.abc import Callable
+
 import numpy as np
 
 from . import _fused as fz
@@ -36,6 +38,7 @@ def solve_polonsky_keer(
     max_iter: int = 10_000,
     initial_pressure: np.ndarray | None = None,
     precondition: bool = True,
+    monitor: Callable[[int, float, Callable[[], ContactState]], None] | None = None,
 ) -> ContactState:
     """Solve for the contact pressure under load or displacement control.
 
@@ -58,6 +61,11 @@ def solve_polonsky_keer(
         to the contact set (in the spirit of Vollebregt, J. Comput. Phys. 257, 333-351, 2014): one
         more FFT pair per iteration, 3-7x fewer iterations on rough surfaces (benchmarks/). Load
         control, and displacement control of non-periodic problems.
+    monitor : callable, optional
+        ``monitor(iteration, residual, snapshot)`` after each residual evaluation; ``snapshot()``
+        returns the current iterate as a :class:`ContactState` (a copy, bit for bit what a solve
+        stopping here would return). The iterates do not depend on ``tol``, so one solve at the
+        tightest tolerance passes through every looser solve's answer.
     """
     load_control = mean_pressure is not None
     # Periodic displacement control has no load constraint to centre the direction, and the
@@ -109,6 +117,9 @@ def solve_polonsky_keer(
         # g stays unshifted: the gap is g - approach, folded into the sums below
         comp, pen, G, psum = fz.measure(g, p, factor, approach, masked, precondition)
         residual = (comp + psum * pen / n) / (psum * scale) if psum > 0 else pen / (n * scale)
+        if monitor is not None:
+            monitor(it, residual, lambda: _state(p * factor, g - approach, hp, heights.shape, approach, it,
+                                                 residual, tol))
         if residual <= tol or it == max_iter:
             break
         if residual < 0.99 * best:
@@ -140,10 +151,15 @@ def solve_polonsky_keer(
             factor = mean_pressure * n / psum
     p *= factor
     g -= approach
-    # g was formed from K p of this very p: gap = u - hp - approach gives u without another convolution
-    displacement = (g + hp + approach).reshape(heights.shape)
+    return _state(p, g, hp, heights.shape, approach, it, residual, tol)
+
+
+def _state(p, gap, hp, shape, approach, it, residual, tol) -> ContactState:
+    """The iterate as a ContactState: ``p`` scaled to the load, ``gap`` shifted by the approach."""
+    # the gap was formed from K p of this very p: u = gap + hp + approach, without another convolution
+    displacement = (gap + hp + approach).reshape(shape)
     return ContactState(
-        pressure=p.reshape(heights.shape), gap=g.reshape(heights.shape), displacement=displacement,
+        pressure=p.reshape(shape), gap=gap.reshape(shape), displacement=displacement,
         penetration=float(approach), mean_pressure=float(p.mean()), iterations=it, residual=float(residual),
         converged=bool(residual <= tol), solver="polonsky-keer",
     )

@@ -19,6 +19,8 @@ def main(sm):
     solver = dict(solver)
     path_dim = study.get("path_dim") if solver.pop("warm_start") else None
     constants = {**material, **solver, **spec["constants"]}
+    if study.get("ladder_dim"):  # e.g. every tol of the grid, so one solve serves them all
+        constants[f"{study['ladder_dim']}_ladder"] = sorted(spec["grid"][study["ladder_dim"]])
     if not dask["scheduler_address"]:  # a LocalCluster sized to the cores Snakemake gave this job
         dask["n_workers"] = max(1, min(dask["n_workers"], sm.threads // dask["threads_per_worker"]))
     config = {"study": spec, "material": material, "solver": {**solver, "warm_start": path_dim is not None},
