@@ -195,8 +195,11 @@ def rough_master(*, hurst: float, seed: int, q_low: float, q_roll: float, q_cuto
                                 rms_slope=rms_slope, seed=seed)
 
 
-REFERENCE_FLOOR = 10.0
-"""A rough reference whose residual stalls within this factor of its tolerance is accepted (round-off)."""
+REFERENCE_FLOOR = 1000.0
+"""A rough reference whose residual stalls within this factor of its tolerance is accepted: the
+round-off floor of the residual grows with the grid (1.2e-12 on 2048^2, above 1e-11 on 8192^2), and a
+reference at 1e-9 is still far below the 1e-6 and larger errors it measures (``reference_residual``
+records what each reached)."""
 REFERENCE_MAX_ITER = 120
 """Iteration bound of the rough reference solve (it converges in 30-50 iterations when it can)."""
 
@@ -211,7 +214,9 @@ def rough_reference(*, n: int, factor: int, tol: float, hurst: float, seed: int,
 
     ``tol = 1e-12`` sits at the round-off floor of the residual on large grids (it stalls near
     1.2e-12 on 2048^2): the reference is accepted, unconverged, once its residual is within
-    ``REFERENCE_FLOOR * tol``, after ``max_iter`` iterations (:data:`REFERENCE_MAX_ITER` in the study)."""
+    ``REFERENCE_FLOOR * tol``, after ``max_iter`` iterations (:data:`REFERENCE_MAX_ITER` in the study).
+    A reference short of that is returned with ``failed`` set (cached like a success, so the
+    points of a task do not each solve it again) and its points report it as not converged."""
     master = rough_master(hurst=hurst, seed=seed, q_low=q_low, q_roll=q_roll, q_cutoff=q_cutoff, rms_slope=rms_slope)
     fine = surfaces.resample(master, factor * n)
     load = reduced_pressure * contact_modulus(E, nu) * rms_slope
@@ -219,10 +224,11 @@ def rough_reference(*, n: int, factor: int, tol: float, hurst: float, seed: int,
         out = solve(fine, E=E, nu=nu, mean_pressure=load, tol=tol, max_iter=max_iter, kernel="spectral")
     except ConvergenceError as err:  # round-off floor: ~1e-12 is not always reachable on 2048^2 and up
         if not err.residual <= REFERENCE_FLOOR * tol:
-            raise
+            return {"failed": f"rough reference on {factor * n}^2: {err}", "residual": float(err.residual)}
         out = err.dataset
     return {"contact_area": float(out.contact_area), "mean_gap": float(out.gap.mean()),
-            "pressure": out.pressure.values[::factor, ::factor].copy(), "residual": float(out.residual)}
+            "pressure": out.pressure.values[::factor, ::factor].copy(), "residual": float(out.residual),
+            "failed": ""}
 
 
 def speed_error_point(*, scene: str, n: int, tol: float, kernel: str, E: float, nu: float, max_iter: int,
@@ -345,6 +351,9 @@ def _speed_error_results(*, tols: tuple, scene: str, n: int, kernel: str, E: flo
                     "rms_slope": rms_slope}
         ref = rough_reference(n=n, factor=reference_factor, tol=reference_tol, reduced_pressure=reduced_pressure,
                               E=E, nu=nu, max_iter=min(max_iter, REFERENCE_MAX_ITER), **spectrum)
+        if ref["failed"]:
+            return {tol: _Outcome(error=ConvergenceError(ref["failed"], residual=ref["residual"], dataset=None))
+                    for tol in tols}
         h = surfaces.resample(rough_master(**spectrum), n)
         load = {"mean_pressure": reduced_pressure * E_star * rms_slope}
 

@@ -197,3 +197,21 @@ def test_tolerance_ladder_reports_unreached_tolerances_as_not_converged():
     result = sweep.evaluate_point(point, {"scene": "hertz", "n": 64, "tol": 1e-12, "tol_ladder": ladder,
                                           "max_iter": cap})
     assert result["status"] == sweep.STATUS_NOT_CONVERGED and result["residual"] > 1e-12
+
+
+def test_failed_rough_reference_is_solved_once_and_reported_per_point(monkeypatch):
+    """A reference short of REFERENCE_FLOOR * tol fails every point of its task, as not converged,
+    without being solved again for each of them (at 8192^2 one attempt costs ten minutes)."""
+    monkeypatch.setattr(studies, "REFERENCE_MAX_ITER", 2)
+    studies.rough_reference.cache_clear()
+    studies._speed_error_results.cache_clear()
+    ladder = (1e-4, 1e-8)
+    for kernel in ("love", "spectral"):
+        for tol in ladder:
+            result = sweep.evaluate_point(point, {"scene": "rough", "n": 32, "tol": tol, "kernel": kernel,
+                                                  "tol_ladder": ladder})
+            assert result["status"] == sweep.STATUS_NOT_CONVERGED
+            assert "rough reference on 128^2" in result["message"] and result["residual"] > 1e-12 * 1000
+    assert studies.rough_reference.cache_info().misses == 1
+    studies.rough_reference.cache_clear()
+    studies._speed_error_results.cache_clear()
