@@ -204,8 +204,9 @@ def solve_tolerances(
     ``min(tols)`` passes through the state each looser solve would return: it is recorded at the
     first iteration whose residual reaches that tolerance, bit for bit the same pressure, gap,
     iterations and residual as ``solve(..., tol=t)``. Each Dataset's ``attrs['wall_time']`` is the
-    time to reach it [s] (its own labelling included, the recording of the others not), i.e. what
-    the separate solve would take. Arguments as :func:`solve` (``method="cg"`` only).
+    time from the first iteration to reaching it [s], its own labelling included and the recording
+    of the others not: the separate solve's time (argument checks and operator set-up excluded).
+    Holds one copy of the fields per tolerance. Arguments as :func:`solve` (``method="cg"`` only).
 
     Returns
     -------
