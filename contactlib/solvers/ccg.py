@@ -118,8 +118,8 @@ def solve_polonsky_keer(
         comp, pen, G, psum = fz.measure(g, p, factor, approach, masked, precondition)
         residual = (comp + psum * pen / n) / (psum * scale) if psum > 0 else pen / (n * scale)
         if monitor is not None:
-            monitor(it, residual, lambda: _state(p * factor, g - approach, hp, heights.shape, approach, it,
-                                                 residual, tol))
+            monitor(it, residual, lambda f=factor, a=approach, i=it, r=residual:
+                    _state(p * f, g - a, hp, heights.shape, a, i, r, tol))
         if residual <= tol or it == max_iter:
             break
         if residual < 0.99 * best:
