@@ -86,6 +86,11 @@ def _lengths(length, ndim: int) -> tuple[float, ...]:
     return lengths
 
 
+def _check_tolerance(value, name: str) -> None:
+    if not (isinstance(value, (int, float)) and math.isfinite(value) and value > 0):
+        raise ValueError(f"{name} must be finite and > 0, got {value!r}")
+
+
 def _check_loads(mean_pressure, penetration) -> None:
     if (mean_pressure is None) == (penetration is None):
         raise ValueError("give exactly one of mean_pressure or penetration")
@@ -222,9 +227,8 @@ def solve_tolerances(
     tols = [float(t) for t in np.atleast_1d(np.asarray(tols, dtype=float))]
     if not tols:
         raise ValueError("tols must hold at least one tolerance")
-    for t in tols:  # the same check as solve's, with the parameter named
-        if not (math.isfinite(t) and t > 0):
-            raise ValueError(f"tols must be finite and > 0, got {t!r}")
+    for t in tols:
+        _check_tolerance(t, "tols")
     setup = _setup(heights, E=E, nu=nu, mean_pressure=mean_pressure, penetration=penetration, periodic=periodic,
                    tol=min(tols), max_iter=max_iter, kernel=kernel, method="cg", length=length,
                    initial_pressure=initial_pressure, target_error=None)
@@ -324,8 +328,7 @@ def _setup(heights, *, E, nu, mean_pressure, penetration, periodic, tol, max_ite
         if periodic:
             accuracy.check_resolution(values, target_error, length=grid.lengths)
     tol = 1e-8 if tol is None else tol
-    if not (isinstance(tol, (int, float)) and math.isfinite(tol) and tol > 0):
-        raise ValueError(f"tol must be finite and > 0, got {tol!r}")
+    _check_tolerance(tol, "tol")
     if int(max_iter) < 1:
         raise ValueError(f"max_iter must be >= 1, got {max_iter!r}")
     if kernel not in KERNELS:

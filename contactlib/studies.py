@@ -370,7 +370,7 @@ def _speed_error_results(*, tols: tuple, scene: str, n: int, kernel: str, E: flo
                 f"did not converge in {int(out.iterations)} iterations: residual {float(out.residual):.3e} > "
                 f"tol {tol:.1e}", residual=float(out.residual), dataset=None))
             continue
-        found = dict.fromkeys(("load_error", "area_error", "pressure_error", "gap_error"), math.nan)
+        found = dict.fromkeys(accuracy.QUANTITIES, math.nan)
         found.update(errors(out))
         outcomes[tol] = _Outcome({
             **found, "max_error": max(v for v in found.values() if not math.isnan(v)),
