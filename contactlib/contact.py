@@ -307,12 +307,12 @@ class _Setup:
         if not state.converged:
             tol, max_iter = ds.attrs["tol"], self.solver_args["max_iter"]
             stalled = state.solver == "polonsky-keer" and state.iterations < max_iter
-            raise ConvergenceError(
-                f"{state.solver} did not converge in {state.iterations} iterations: residual "
-                f"{state.residual:.3e} > tol {tol:.1e}"
-                + (" (stalled: no progress over the last iterations; round-off floor or an ill-posed scene)"
-                   if stalled else ""), residual=state.residual, dataset=ds,
-            )
+            message = (f"{state.solver} did not converge in {state.iterations} iterations: residual "
+                       f"{state.residual:.3e} > tol {tol:.1e}"
+                       + (" (stalled: no progress over the last iterations; round-off floor or an ill-posed scene)"
+                          if stalled else ""))
+            ds.attrs["convergence_message"] = message  # the partial state says why it is partial
+            raise ConvergenceError(message, residual=state.residual, dataset=ds)
 
 
 def _setup(heights, *, E, nu, mean_pressure, penetration, periodic, tol, max_iter, kernel, method, length,

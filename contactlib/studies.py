@@ -366,9 +366,8 @@ def _speed_error_results(*, tols: tuple, scene: str, n: int, kernel: str, E: flo
     outcomes = {}
     for tol, out in zip(tols, _timed_solves(h, tols, **kw, **load)):
         if out.attrs["converged"] != 1:
-            outcomes[tol] = _Outcome(error=ConvergenceError(
-                f"did not converge in {int(out.iterations)} iterations: residual {float(out.residual):.3e} > "
-                f"tol {tol:.1e}", residual=float(out.residual), dataset=None))
+            outcomes[tol] = _Outcome(error=ConvergenceError(out.attrs["convergence_message"],
+                                                            residual=float(out.residual), dataset=None))
             continue
         found = dict.fromkeys(accuracy.QUANTITIES, math.nan)
         found.update(errors(out))

@@ -61,6 +61,9 @@ def test_unreached_tolerance_raises_with_every_answer():
     assert loose.attrs["converged"] == 1 and int(loose.iterations) == int(reachable.iterations)
     assert tight.attrs["converged"] == 0 and int(tight.iterations) == cap
     assert info.value.residual == float(tight.residual) > 1e-12
+    # the partial answer says why it is partial, in the words of the error
+    assert tight.attrs["convergence_message"] == str(info.value)
+    assert "convergence_message" not in loose.attrs
 
 
 @pytest.mark.parametrize("tols, message", [([], "at least one"), ([1e-6, 0.0], "tols"),
