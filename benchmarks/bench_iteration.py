@@ -1,0 +1,224 @@
+"""Where one iteration of contactlib's Polonsky-Keer solver spends its time, against what the
+machine's memory bandwidth allows.
+
+For each N, a self-affine surface is solved under load control for ``--iterations`` iterations
+(a realistic contact set and pressure), and then every part of one iteration is timed alone on
+that state, ``--repeats`` times (median):
+
+* the transforms: forward and inverse planned FFTs of the grid (``contactlib.fft.get_fft``);
+* the two Fourier multiplies (``K``, and the preconditioner) and the Parseval sum ``<t, K t>``;
+* the five fused element-wise sweeps of ``contactlib.solvers._fused``, in the order the loop
+  calls them.
+
+Each part is also given in *array transfers*: how many times it must move an n-element float64
+array through memory (a read is 1; a write is 2, since the cache line is read before it is written,
+or 1 where the sweep read that element already; an rfft half-spectrum of complex numbers counts as
+one array, its real multiplier as half). Times one transfer, measured by
+a streaming read of a grid-sized array, this is the floor that memory bandwidth sets under each
+sweep, whatever the code. ``--threads 2`` also measures that streaming read with two threads,
+which tells whether multi-threaded sweeps could go faster at all on this machine.
+
+Run ``python benchmarks/bench_iteration.py --help``; the sum of the parts is checked against the
+time per iteration of a whole solve measured in the same run.
+"""
+
+from __future__ import annotations
+
+import os
+
+for _var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
+    os.environ.setdefault(_var, "1")
+
+import argparse
+import json
+import sys
+import time
+from pathlib import Path
+
+import numba
+import numpy as np
+
+import contactlib
+from contactlib import fft as cfft
+from contactlib.grid import Grid
+from contactlib.operators import Compliance, _scale_spectrum, _weighted_power_sum
+from contactlib.solvers import _fused as fz
+from contactlib.solvers import solve_polonsky_keer
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from bench_solver import Contactlib, make_surface, pressure_for_area
+
+
+@numba.njit(cache=True, nogil=True, fastmath={"reassoc", "contract", "nsz"})
+def _stream_read(a):
+    s = 0.0
+    for i in range(a.size):
+        s += a[i]
+    return s
+
+
+@numba.njit(cache=True, nogil=True, parallel=True, fastmath={"reassoc", "contract", "nsz"})
+def _stream_read_parallel(a):
+    s = 0.0
+    for i in numba.prange(a.size):
+        s += a[i]
+    return s
+
+
+def median_time(fn, repeats: int, setup=None) -> float:
+    times = []
+    for _ in range(repeats):
+        if setup is not None:
+            setup()
+        t0 = time.perf_counter()
+        fn()
+        times.append(time.perf_counter() - t0)
+    return float(np.median(times))
+
+
+def measure(n: int, args) -> dict:
+    heights = make_surface(n, args)
+    cfft.set_fft_options(threads=1)
+    mean_pressure, contact = pressure_for_area(Contactlib(args.E, args.nu, 1), heights, args.contact, args)
+    E_star = args.E / (1 - args.nu**2)
+    op = Compliance(Grid(heights.shape, (1.0, 1.0)), E_star=E_star, kernel="spectral", periodic=True)
+
+    # a whole solve: the time per iteration the parts must add up to
+    t0 = time.perf_counter()
+    full = solve_polonsky_keer(op, heights, mean_pressure=mean_pressure, tol=args.tol)
+    t_iteration = (time.perf_counter() - t0) / max(full.iterations, 1)
+
+    # a mid-solve state: its contact set is what the sweeps branch on
+    mid = solve_polonsky_keer(op, heights, mean_pressure=mean_pressure, tol=0.0, max_iter=args.iterations)
+    hp = heights - heights.max()
+    p = np.ascontiguousarray(mid.pressure)
+    approach = mid.penetration
+    g = np.ascontiguousarray(mid.gap + approach)
+    t = np.where(p > 0, mid.gap, 0.0)
+    plan = cfft.get_fft(heights.shape)
+    u = np.ascontiguousarray(mid.displacement)
+    spectrum_copy = np.empty_like(plan.spectrum)
+    r = args.repeats
+
+    def load(field):
+        return lambda: np.copyto(plan.real, field)
+
+    parts = {}
+    parts["forward FFT"] = (median_time(plan.forward, r, load(p)), 0)
+    plan.forward()
+    spectrum_copy[...] = plan.spectrum
+    parts["inverse FFT"] = (median_time(plan.inverse, r, lambda: np.copyto(plan.spectrum, spectrum_copy)), 0)
+    multiplier = op.multiplier
+    s2, m2 = plan.spectrum.reshape(-1, plan.spectrum.shape[-1]), multiplier.reshape(-1, multiplier.shape[-1])
+    parts["multiply K (x2: K p, preconditioner)"] = (
+        2 * median_time(lambda: _scale_spectrum(s2, m2), r, lambda: np.copyto(plan.spectrum, spectrum_copy)), 2 * 2.5)
+    even = heights.shape[-1] % 2 == 0
+    parts["Parseval <t, K t>"] = (median_time(lambda: _parseval(plan.spectrum, multiplier, even), r), 1.5)
+    work = np.empty_like(p)
+    parts["A gap_and_contact_mean"] = (median_time(lambda: fz.gap_and_contact_mean(u, 1.0, hp, p, work), r), 5)
+    parts["B measure (+ masked gap)"] = (median_time(lambda: fz.measure(g, p, 1.0, approach, plan.real, True), r), 4)
+    parts["C contact_sums"] = (median_time(lambda: fz.contact_sums(u, g, approach, p), r), 3)
+    t_work = np.empty_like(t)
+    z = np.where(p > 0, u, 0.0)  # stands for the preconditioned gap; as in the loop, it is in the FFT buffer
+
+    def fresh_direction():
+        np.copyto(t_work, t)
+        np.copyto(plan.real, z)
+
+    parts["D conjugate_direction"] = (  # writes t over z, in place, as the loop does
+        median_time(lambda: fz.conjugate_direction(plan.real, 0.0, g, approach, p, 0.5, t_work, plan.real), r,
+                    fresh_direction), 6)
+    p_work = np.empty_like(p)
+    parts["E step_project_reenter"] = (
+        median_time(lambda: fz.step_project_reenter(p_work, 1.0, t, g, approach, 1e-3, 1e-3, plan.real), r,
+                    lambda: np.copyto(p_work, p)), 6)
+
+    flat = np.ascontiguousarray(heights).ravel()
+    _stream_read(flat)
+    transfer = median_time(lambda: _stream_read(flat), max(r, 9))
+    pair = median_time(lambda: (plan.forward(), plan.inverse()), max(r, 9))
+    out = {"n": n, "contact_fraction": float(np.mean(p > 0)), "calibrated_contact": contact,
+           "mean_pressure": mean_pressure, "iterations_full_solve": full.iterations,
+           "t_iteration": t_iteration, "t_fft_pair": pair, "t_transfer": transfer,
+           "read_bandwidth_gb_s": flat.nbytes / transfer / 1e9,
+           "parts": {k: {"seconds": v[0], "transfers": v[1]} for k, v in parts.items()}}
+    if 2 in args.threads:
+        numba.set_num_threads(min(2, numba.config.NUMBA_NUM_THREADS))
+        _stream_read_parallel(flat)
+        out["t_transfer_2_threads"] = median_time(lambda: _stream_read_parallel(flat), max(r, 9))
+        numba.set_num_threads(1)
+    return out
+
+
+def _parseval(spectrum, multiplier, even):
+    return _weighted_power_sum(spectrum.reshape(-1, spectrum.shape[-1]),
+                               multiplier.reshape(-1, multiplier.shape[-1]), even)
+
+
+def report(res: dict) -> str:
+    pair, tr = res["t_fft_pair"], res["t_transfer"]
+    lines = [f"### N = {res['n']}, contact fraction {res['contact_fraction']:.3f}",
+             "",
+             f"FFT pair {pair * 1e3:.2f} ms; one array transfer (streaming read of {res['n']}^2 float64) "
+             f"{tr * 1e3:.3f} ms = {res['read_bandwidth_gb_s']:.1f} GB/s"
+             + (f"; with 2 threads {res['t_transfer_2_threads'] * 1e3:.3f} ms "
+                f"({tr / res['t_transfer_2_threads']:.2f}x)" if "t_transfer_2_threads" in res else ""),
+             "",
+             "| part | time [ms] | FFT pairs | transfers | bandwidth floor [ms] | time / floor |",
+             "|---|---|---|---|---|---|"]
+    fft_parts = ("forward FFT", "inverse FFT")
+    total = non_fft = floor_non_fft = 0.0
+    for name, v in res["parts"].items():
+        s, k = v["seconds"], v["transfers"]
+        count = 2 if name in fft_parts else 1
+        if name == "forward FFT":
+            count = 3  # K p, the preconditioner, and t for <t, K t>
+        total += count * s
+        floor = k * tr if name not in fft_parts else float("nan")
+        if name not in fft_parts:
+            non_fft += s
+            floor_non_fft += floor
+        lines.append(f"| {name}{f' (x{count} per iteration)' if count > 1 else ''} | {s * 1e3:.3f} | "
+                     f"{s / pair:.3f} | {k if name not in fft_parts else '-'} | "
+                     f"{'' if name in fft_parts else f'{floor * 1e3:.3f}'} | "
+                     f"{'' if name in fft_parts else f'{s / floor:.2f}'} |")
+    fft_time = total - non_fft
+    whole = res["t_iteration"]
+    lines += [
+        "",
+        (f"- parts summed: {total * 1e3:.2f} ms per iteration ({total / pair:.2f} FFT pairs); whole solve: "
+         f"{whole * 1e3:.2f} ms per iteration over {res['iterations_full_solve']} iterations ({whole / pair:.2f} pairs)"),
+        (f"- transforms {fft_time / pair:.2f} pairs; everything else {non_fft / pair:.2f} pairs: non-FFT share "
+         f"{100 * non_fft / total:.0f} % of the parts, {100 * (1 - fft_time / whole):.0f} % of the whole solve's "
+         "iteration (Python and the residual's bookkeeping included)"),
+        (f"- the same non-FFT work at the bandwidth floor: {floor_non_fft / pair:.2f} pairs, share "
+         f"{100 * floor_non_fft / (fft_time + floor_non_fft):.0f} %"),
+    ]
+    return "\n".join(lines)
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("--sizes", type=int, nargs="+", default=[512, 1024, 2048])
+    ap.add_argument("--contact", type=float, default=0.1, help="target contact fraction")
+    ap.add_argument("--iterations", type=int, default=20, help="iterations before the state is frozen")
+    ap.add_argument("--repeats", type=int, default=15)
+    ap.add_argument("--threads", type=int, nargs="+", default=[1], help="add 2: streaming read with 2 threads too")
+    ap.add_argument("--tol", type=float, default=1e-8)
+    ap.add_argument("--json", type=Path)
+    for name, default in (("hurst", 0.8), ("q-roll", 4.0), ("cutoff-fraction", 1 / 8), ("rms-slope", 0.1),
+                          ("E", 1.0), ("nu", 0.3)):
+        ap.add_argument(f"--{name}", type=float, default=default)
+    ap.add_argument("--seed", type=int, default=1)
+    args = ap.parse_args(argv)
+    results = [measure(n, args) for n in args.sizes]
+    print(f"contactlib {contactlib.__version__}, numba {numba.__version__}, 1 FFTW thread, load control, "
+          f"spectral kernel, preconditioned\n")
+    print("\n\n".join(report(res) for res in results))
+    if args.json:
+        args.json.write_text(json.dumps(results, indent=1))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
