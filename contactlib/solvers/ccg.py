@@ -69,9 +69,13 @@ def solve_polonsky_keer(
     """
     load_control = mean_pressure is not None
     # Periodic displacement control has no load constraint to centre the direction, and the
-    # periodic compliance is blind to the mean pressure (zero mode 0) while the preconditioner is
-    # not: the preconditioned iteration diverged there beyond ~50 % contact. The non-periodic
-    # compliance is definite, and the preconditioner works under either control.
+    # periodic compliance is blind to the mean pressure (zero mode 0). Preconditioned, the first
+    # steps overshoot to full contact (256^2, 64 % contact at the solution): there the direction's
+    # mean has zero curvature, the step length blows up and p reaches 1e19. With the
+    # preconditioner's zero mode set to 0 as well, it stays stuck at full contact instead. Plain CG
+    # converges; the way to precondition it is the dual problem (the gap as unknown, its mean
+    # fixed), not done yet. The non-periodic compliance is definite, and the preconditioner works
+    # under either control.
     precondition = precondition and (load_control or not operator.periodic)
     hp = fz.as2d(heights - heights.max())  # <= 0; gap = u - hp - penetration
     scale = height_scale(heights)
