@@ -115,12 +115,13 @@ class RealFFT:
         return self.real
 
 
-def get_fft(shape: tuple[int, ...]) -> RealFFT:
-    """The cached plan for ``shape`` in this thread (built on first use)."""
+def get_fft(shape: tuple[int, ...], slot: str = "work") -> RealFFT:
+    """The cached plan for ``shape`` in this thread (built on first use). Another ``slot`` gives a
+    plan with buffers of its own, for a transform that must not disturb the work buffers."""
     cache = getattr(_local, "plans", None)
     if cache is None:
         cache = _local.plans = {}
-    key = (tuple(shape), _settings["threads"], _settings["effort"])
+    key = (tuple(shape), _settings["threads"], _settings["effort"], slot)
     plan = cache.get(key)
     if plan is None:
         plan = cache[key] = RealFFT(tuple(shape), _settings["threads"], _settings["effort"])

@@ -99,14 +99,15 @@ class Compliance:
             self._inverse = fft.convolution_multiplier(self.E_star * q / 2, self.work_shape)
         return self._inverse
 
-    def longest_wave_stiffness(self) -> float:
+    def reentry_scale(self) -> float:
         """``E* q1 / 2`` [pressure/length] at the lowest non-zero wavenumber ``q1`` of the work grid:
-        the preconditioner's stiffness for its longest wave (and for its zero mode)."""
+        the preconditioner's stiffness for its longest wave (and for its zero mode), its softest.
+        The preconditioned solver re-enters a point at this stiffness times its overlap."""
         self.inverse_multiplier  # builds it once, with q1: the preconditioned solve needs it anyway
         return self.E_star * self._lowest_wavenumber / 2
 
     def load(self) -> np.ndarray:
-        """Writable view where the next input pressure goes (padding already zeroed)."""
+        """Writable view where the next input field goes (padding already zeroed)."""
         plan = fft.get_fft(self.work_shape)
         if not self.periodic:  # zero the padding only: the block may hold the caller's input
             n0 = self.grid.shape[0]
@@ -124,6 +125,16 @@ class Compliance:
         multiplier = self.inverse_multiplier if inverse else self.multiplier
         _scale_spectrum(spectrum.reshape(-1, spectrum.shape[-1]), multiplier.reshape(-1, multiplier.shape[-1]))
         return plan.inverse()[self._block]
+
+    def apply_aside(self, field: np.ndarray) -> np.ndarray:
+        """Convolve ``field`` on FFT buffers of its own (a new array): safe in the middle of a solve
+        whose iterate sits in the work buffers of :meth:`load`."""
+        plan = fft.get_fft(self.work_shape, slot="aside")
+        plan.real.fill(0.0)
+        plan.real[self._block] = field
+        spectrum = plan.forward()
+        _scale_spectrum(spectrum.reshape(-1, spectrum.shape[-1]), self.multiplier.reshape(-1, self.multiplier.shape[-1]))
+        return plan.inverse()[self._block].copy()
 
     def quadratic_form(self) -> float:
         """``<t, K t>`` [length * pressure, summed over elements] for the field ``t`` written to
@@ -164,3 +175,35 @@ class Compliance:
         idx = np.unravel_index(np.asarray(flat_indices), self.grid.shape)
         diff = tuple((a[:, None] - a[None, :]) % n for a, n in zip(idx, self.work_shape))
         return resp[diff]
+
+
+class Stiffness(Compliance):
+    """Normal stiffness of a periodic elastic half-space: surface displacement -> pressure.
+
+    The exact inverse of a periodic :class:`Compliance` on every non-zero wavevector, and 0 on the
+    mean, which a periodic surface's displacement does not fix. It is the operator of the dual
+    contact problem (the gap as unknown, :mod:`contactlib.solvers.dual`), whose preconditioner
+    (:attr:`inverse_multiplier`) is the compliance itself, its zero mode given its longest wave's
+    value as the compliance's preconditioner does.
+    """
+
+    def __init__(self, compliance: Compliance):
+        if not compliance.periodic:
+            raise ValueError("Stiffness: the compliance must be periodic (a zero-padded one has no exact inverse)")
+        self.grid, self.E_star, self.kernel, self.periodic = compliance.grid, compliance.E_star, compliance.kernel, True
+        self.work_shape, self._block = compliance.work_shape, compliance._block
+        count = float(np.prod(self.work_shape))
+        transfer = compliance.multiplier * count
+        stiffness = np.zeros_like(transfer)
+        np.divide(1.0, transfer, out=stiffness, where=transfer > 0)
+        self.multiplier = fft.convolution_multiplier(stiffness, self.work_shape)
+        inverse = compliance.multiplier.copy()
+        inverse.flat[0] = inverse.flat[1]  # grids have at least 2 points a side
+        self._inverse = inverse
+        self._softest = float(inverse.min()) * count
+
+    def reentry_scale(self) -> float:
+        """The smallest compliance [length/pressure] (the shortest wave's): re-entry in the dual
+        problem turns a tensile pressure into a gap, and the gentlest such conversion keeps it stable
+        (the longest wave's, 1e3 times larger on 256^2, made the iteration diverge)."""
+        return self._softest

@@ -18,7 +18,7 @@ SCENES = {
     "hertz, displacement control, non-periodic": (
         lambda: surfaces.paraboloid(96, length=1.0, radius=1.0), {"penetration": 0.01, "periodic": False,
                                                                   "kernel": "love"}),
-    "rough, periodic displacement control (plain CG)": (lambda: _rough(), {"penetration": 0.004}),
+    "rough, periodic displacement control (dual)": (lambda: _rough(), {"penetration": 0.004}),
     "profile, load control": (lambda: surfaces.wavy(512, length=1.0, amplitude=0.01, dim=1),
                               {"mean_pressure": 0.005}),
 }

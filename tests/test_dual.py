@@ -1,0 +1,91 @@
+"""Periodic displacement control, solved as its dual (contactlib.solvers.dual), against the primal
+iteration and against load control."""
+
+import numpy as np
+import pytest
+
+import contactlib
+from contactlib.grid import Grid
+from contactlib.operators import Compliance, Stiffness
+from contactlib.solvers import contact_residual, solve_periodic_displacement, solve_polonsky_keer
+from contactlib.solvers.state import height_scale
+
+
+def _surface(n, dim=2, seed=1):
+    return contactlib.surfaces.self_affine(n, hurst=0.8, q_roll=4, q_cutoff=n / 8, rms_slope=0.1, seed=seed,
+                                           dim=dim).values
+
+
+@pytest.mark.parametrize("kernel", ["spectral", "love"])
+def test_stiffness_inverts_the_compliance_but_for_the_mean(kernel, rng):
+    grid = Grid((48, 40), (1.0, 0.8))
+    compliance = Compliance(grid, E_star=3.0, kernel=kernel)
+    p = rng.random(grid.shape)
+    u = compliance(p)
+    stiffness = Stiffness(compliance)
+    back = stiffness(u)
+    np.testing.assert_allclose(back, p - p.mean(), atol=1e-12 * np.abs(p).max())
+
+
+@pytest.mark.parametrize("fraction", [0.2, 0.6, 0.9, 0.97, 0.999])
+@pytest.mark.parametrize("kernel", ["spectral", "love"])
+def test_dual_matches_the_primal_iteration(kernel, fraction):
+    """Same pressure field as the unpreconditioned primal iteration solved tighter, from 0.1 % to 96 %
+    contact, in fewer iterations (2-11x fewer here)."""
+    h = _surface(128)
+    op = Compliance(Grid(h.shape, (1.0, 1.0)), E_star=1.0, kernel=kernel)
+    penetration = fraction * float(np.mean(h.max() - h))
+    primal = solve_polonsky_keer(op, h, penetration=penetration, tol=1e-11, max_iter=5000)
+    assert primal.converged
+    dual = solve_periodic_displacement(op, h, penetration=penetration, tol=1e-8)
+    assert dual.converged and dual.residual <= 1e-8
+    assert dual.solver == "polonsky-keer-dual" and dual.penetration == penetration
+    # what the residual promises, checked on the fields themselves
+    assert dual.residual == contact_residual(dual.pressure, dual.gap, height_scale(h))
+    assert dual.pressure.min() >= 0
+    np.testing.assert_allclose(dual.gap, dual.displacement + (h.max() - h) - penetration, atol=1e-14)
+    assert np.linalg.norm(dual.pressure - primal.pressure) <= 1e-6 * np.linalg.norm(primal.pressure)
+    assert np.count_nonzero(dual.pressure > 0) == np.count_nonzero(primal.pressure > 0)
+    plain = solve_polonsky_keer(op, h, penetration=penetration, tol=1e-8, max_iter=5000)
+    assert dual.iterations < plain.iterations
+
+
+def test_dual_converges_where_the_primal_iteration_stalls():
+    """A 1D profile at 92 % contact: the primal iteration stalls at residual 4e-3; the dual converges,
+    and load control at the dual's mean pressure (preconditioned primal, another formulation) finds
+    the same pressure and the imposed penetration."""
+    h = _surface(4096, dim=1)
+    op = Compliance(Grid(h.shape, (1.0,)), E_star=1.0)
+    penetration = 0.999 * float(np.mean(h.max() - h))
+    primal = solve_polonsky_keer(op, h, penetration=penetration, tol=1e-10, max_iter=3000)
+    assert not primal.converged and primal.residual > 1e-3
+    dual = solve_periodic_displacement(op, h, penetration=penetration, tol=1e-10)
+    assert dual.converged and dual.residual <= 1e-10
+    by_load = solve_polonsky_keer(op, h, mean_pressure=dual.mean_pressure, tol=1e-10)
+    assert by_load.converged
+    assert by_load.penetration == pytest.approx(penetration, rel=1e-7)
+    assert np.linalg.norm(by_load.pressure - dual.pressure) <= 1e-6 * np.linalg.norm(dual.pressure)
+
+
+def test_dual_warm_start_reaches_the_same_answer_sooner():
+    h = _surface(128)
+    op = Compliance(Grid(h.shape, (1.0, 1.0)), E_star=1.0)
+    depth = float(np.mean(h.max() - h))
+    previous = solve_periodic_displacement(op, h, penetration=0.88 * depth, tol=1e-8)
+    cold = solve_periodic_displacement(op, h, penetration=0.9 * depth, tol=1e-8)
+    warm = solve_periodic_displacement(op, h, penetration=0.9 * depth, tol=1e-8, initial_pressure=previous.pressure)
+    assert warm.converged and warm.iterations < cold.iterations
+    assert np.linalg.norm(warm.pressure - cold.pressure) <= 1e-6 * np.linalg.norm(cold.pressure)
+
+
+def test_solve_uses_the_dual_for_periodic_displacement_control(material, rough64):
+    out = contactlib.solve(rough64, E=material["E"], nu=material["nu"], penetration=0.004, tol=1e-9)
+    assert out.attrs["solver"] == "polonsky-keer-dual" and out.attrs["converged"] == 1
+    by_load = contactlib.solve(rough64, E=material["E"], nu=material["nu"], mean_pressure=float(out.mean_pressure),
+                               tol=1e-10)
+    assert float(by_load.penetration) == pytest.approx(0.004, rel=1e-7)
+
+
+def test_stiffness_refuses_a_padded_compliance():
+    with pytest.raises(ValueError, match="periodic"):
+        Stiffness(Compliance(Grid((16, 16), (1.0, 1.0)), E_star=1.0, periodic=False))
