@@ -212,6 +212,9 @@ def solve_tolerances(
     time from the first iteration to reaching it [s], its own labelling included and the recording
     of the others not: the separate solve's time (argument checks and operator set-up excluded).
     Holds one copy of the fields per tolerance. Arguments as :func:`solve` (``method="cg"`` only).
+    Periodic displacement control (the dual solver) checks the primal residual, one convolution,
+    at every iteration whose own residual is below the loosest tolerance, not only the tightest:
+    its times there include those checks, which a separate looser solve partly skips.
 
     Returns
     -------
