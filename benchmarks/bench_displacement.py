@@ -64,9 +64,9 @@ def main(argv=None) -> int:
         for fraction in args.fractions:
             d = fraction * depth
             ref = solve_periodic_displacement(op, h, penetration=d, tol=args.tol * 1e-3, max_iter=args.max_iter)
-            t_dual, dual = timed(lambda d=d: solve_periodic_displacement(op, h, penetration=d, tol=args.tol,
+            t_dual, dual = timed(lambda d=d, op=op, h=h: solve_periodic_displacement(op, h, penetration=d, tol=args.tol,
                                                                           max_iter=args.max_iter), args.repeats)
-            t_primal, primal = timed(lambda d=d: solve_polonsky_keer(op, h, penetration=d, tol=args.tol,
+            t_primal, primal = timed(lambda d=d, op=op, h=h: solve_polonsky_keer(op, h, penetration=d, tol=args.tol,
                                                                       max_iter=args.max_iter), args.repeats)
             norm = np.linalg.norm(ref.pressure)
             row = {"n": n, "fraction": fraction, "contact_area": float(np.mean(dual.pressure > 0)),
