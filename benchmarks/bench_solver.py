@@ -40,7 +40,6 @@ import io
 import json
 import math
 import platform
-import re
 import subprocess
 import sys
 import tempfile
