@@ -89,3 +89,18 @@ def test_solve_uses_the_dual_for_periodic_displacement_control(material, rough64
 def test_stiffness_refuses_a_padded_compliance():
     with pytest.raises(ValueError, match="periodic"):
         Stiffness(Compliance(Grid((16, 16), (1.0, 1.0)), E_star=1.0, periodic=False))
+
+
+@pytest.mark.parametrize("modulus, height", [(1e-6, 1e-9), (2e11, 1e3), (1.0, 1e-3)])
+def test_dual_is_blind_to_the_unit_system(modulus, height):
+    """Pressures scale with E* and gaps with the heights: the dual iteration (its re-entry compliance
+    included) must take the same steps in any units."""
+    h = _surface(128)
+    depth = 0.95 * float(np.mean(h.max() - h))
+    grid = Grid(h.shape, (1.0, 1.0))
+    ref = solve_periodic_displacement(Compliance(grid, E_star=1.0), h, penetration=depth, tol=1e-9)
+    out = solve_periodic_displacement(Compliance(grid, E_star=modulus), h * height, penetration=depth * height,
+                                      tol=1e-9)
+    assert out.iterations == ref.iterations
+    assert np.count_nonzero(out.pressure > 0) == np.count_nonzero(ref.pressure > 0)
+    np.testing.assert_allclose(out.pressure / (modulus * height), ref.pressure, rtol=1e-7, atol=1e-12 * ref.pressure.max())
