@@ -205,6 +205,7 @@ def main(argv=None) -> int:
     ap.add_argument("--repeats", type=int, default=15)
     ap.add_argument("--threads", type=int, nargs="+", default=[1], help="add 2: streaming read with 2 threads too")
     ap.add_argument("--tol", type=float, default=1e-8)
+    ap.add_argument("--calibration-tol", type=float, default=1e-6, help="of the solves that find the load")
     ap.add_argument("--json", type=Path)
     for name, default in (("hurst", 0.8), ("q-roll", 4.0), ("cutoff-fraction", 1 / 8), ("rms-slope", 0.1),
                           ("E", 1.0), ("nu", 0.3)):
