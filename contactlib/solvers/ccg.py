@@ -81,9 +81,9 @@ def solve_polonsky_keer(
     # steps overshoot to full contact (256^2, 64 % contact at the solution): there the direction's
     # mean has zero curvature, the step length blows up and p reaches 1e19. With the
     # preconditioner's zero mode set to 0 as well, it stays stuck at full contact instead. Plain CG
-    # converges; the way to precondition it is the dual problem (the gap as unknown, its mean
-    # fixed), not done yet. The non-periodic compliance is definite, and the preconditioner works
-    # under either control.
+    # converges, slowly; contactlib.solve runs the dual problem there instead (.dual: the gap as
+    # unknown, its mean fixed, preconditioned). The non-periodic compliance is definite, and the
+    # preconditioner works under either control.
     precondition = precondition and (load_control or not operator.periodic)
     hp = fz.as2d(heights - heights.max())  # <= 0; gap = u - hp - penetration
     scale = height_scale(heights)
