@@ -120,11 +120,7 @@ class Compliance:
         """Convolve what :meth:`load` received; returns a view of the displacement (valid until
         the next call on this shape in this thread). ``inverse=True`` applies the approximate
         inverse (:attr:`inverse_multiplier`) instead: a preconditioner."""
-        plan = fft.get_fft(self.work_shape)
-        spectrum = plan.forward()
-        multiplier = self.inverse_multiplier if inverse else self.multiplier
-        _scale_spectrum(spectrum.reshape(-1, spectrum.shape[-1]), multiplier.reshape(-1, multiplier.shape[-1]))
-        return plan.inverse()[self._block]
+        return self._convolve(fft.get_fft(self.work_shape), self.inverse_multiplier if inverse else self.multiplier)
 
     def apply_aside(self, field: np.ndarray) -> np.ndarray:
         """Convolve ``field`` on FFT buffers of its own (a new array): safe in the middle of a solve
@@ -132,9 +128,13 @@ class Compliance:
         plan = fft.get_fft(self.work_shape, slot="aside")
         plan.real.fill(0.0)
         plan.real[self._block] = field
+        return self._convolve(plan, self.multiplier).copy()
+
+    def _convolve(self, plan: fft.RealFFT, multiplier: np.ndarray) -> np.ndarray:
+        """Forward transform of ``plan.real``, times ``multiplier``, back: a view of the block."""
         spectrum = plan.forward()
-        _scale_spectrum(spectrum.reshape(-1, spectrum.shape[-1]), self.multiplier.reshape(-1, self.multiplier.shape[-1]))
-        return plan.inverse()[self._block].copy()
+        _scale_spectrum(spectrum.reshape(-1, spectrum.shape[-1]), multiplier.reshape(-1, multiplier.shape[-1]))
+        return plan.inverse()[self._block]
 
     def quadratic_form(self) -> float:
         """``<t, K t>`` [length * pressure, summed over elements] for the field ``t`` written to
