@@ -15,8 +15,8 @@ array through memory (a read is 1; a write is 2, since the cache line is read be
 or 1 where the sweep read that element already; an rfft half-spectrum of complex numbers counts as
 one array, its real multiplier as half). Times one transfer, measured by
 a streaming read of a grid-sized array, this is the floor that memory bandwidth sets under each
-sweep, whatever the code. ``--threads 2`` also measures that streaming read with two threads,
-which tells whether multi-threaded sweeps could go faster at all on this machine.
+sweep, whatever the code. ``--threads 1 2`` repeats everything with FFTW and the sweeps on two threads
+(the streaming read too), from the same mid-solve state.
 
 Run ``python benchmarks/bench_iteration.py --help``; the sum of the parts is checked against the
 time per iteration of a whole solve measured in the same run.
@@ -41,7 +41,7 @@ import numpy as np
 import contactlib
 from contactlib import fft as cfft
 from contactlib.grid import Grid
-from contactlib.operators import Compliance, _scale_spectrum, _weighted_power_sum
+from contactlib.operators import Compliance, scale_spectrum, weighted_power_sum
 from contactlib.solvers import _fused as fz
 from contactlib.solvers import solve_polonsky_keer
 
@@ -76,20 +76,29 @@ def median_time(fn, repeats: int, setup=None) -> float:
     return float(np.median(times))
 
 
-def measure(n: int, args) -> dict:
+def measure(n: int, args) -> list[dict]:
     heights = make_surface(n, args)
     cfft.set_fft_options(threads=1)
     mean_pressure, contact = pressure_for_area(Contactlib(args.E, args.nu, 1), heights, args.contact, args)
     E_star = args.E / (1 - args.nu**2)
     op = Compliance(Grid(heights.shape, (1.0, 1.0)), E_star=E_star, kernel="spectral", periodic=True)
+    # a mid-solve state: its contact set is what the sweeps branch on
+    mid = solve_polonsky_keer(op, heights, mean_pressure=mean_pressure, tol=0.0, max_iter=args.iterations)
+    return [measure_threads(threads, heights, op, mean_pressure, contact, mid, args) for threads in args.threads]
 
+
+def measure_threads(threads: int, heights, op, mean_pressure, contact, mid, args) -> dict:
+    """Every part, the FFT pair and a whole solve with FFTW and the sweeps on ``threads`` threads."""
+    n = heights.shape[0]
+    cfft.set_fft_options(threads=threads)
+    sweeps = fz.select(heights.shape)
+    numba_threads = numba.get_num_threads() if sweeps is fz._PARALLEL else 1
+    solve_polonsky_keer(op, heights, mean_pressure=mean_pressure, tol=0.0, max_iter=2)  # plans, compiles
     # a whole solve: the time per iteration the parts must add up to
     t0 = time.perf_counter()
     full = solve_polonsky_keer(op, heights, mean_pressure=mean_pressure, tol=args.tol)
     t_iteration = (time.perf_counter() - t0) / max(full.iterations, 1)
 
-    # a mid-solve state: its contact set is what the sweeps branch on
-    mid = solve_polonsky_keer(op, heights, mean_pressure=mean_pressure, tol=0.0, max_iter=args.iterations)
     hp = heights - heights.max()
     p = np.ascontiguousarray(mid.pressure)
     approach = mid.penetration
@@ -111,13 +120,14 @@ def measure(n: int, args) -> dict:
     multiplier = op.multiplier
     s2, m2 = plan.spectrum.reshape(-1, plan.spectrum.shape[-1]), multiplier.reshape(-1, multiplier.shape[-1])
     parts["multiply K (x2: K p, preconditioner)"] = (
-        2 * median_time(lambda: _scale_spectrum(s2, m2), r, lambda: np.copyto(plan.spectrum, spectrum_copy)), 2 * 2.5)
+        2 * median_time(lambda: scale_spectrum(s2, m2), r, lambda: np.copyto(plan.spectrum, spectrum_copy)), 2 * 2.5)
     even = heights.shape[-1] % 2 == 0
     parts["Parseval <t, K t>"] = (median_time(lambda: _parseval(plan.spectrum, multiplier, even), r), 1.5)
     work = np.empty_like(p)
-    parts["A gap_and_contact_mean"] = (median_time(lambda: fz.gap_and_contact_mean(u, 1.0, hp, p, work), r), 5)
-    parts["B measure (+ masked gap)"] = (median_time(lambda: fz.measure(g, p, 1.0, approach, plan.real, True), r), 4)
-    parts["C contact_sums"] = (median_time(lambda: fz.contact_sums(u, g, approach, p), r), 3)
+    parts["A gap_and_contact_mean"] = (median_time(lambda: sweeps.gap_and_contact_mean(u, 1.0, hp, p, work), r), 5)
+    parts["B measure (+ masked gap)"] = (
+        median_time(lambda: sweeps.measure(g, p, 1.0, approach, plan.real, True), r), 4)
+    parts["C contact_sums"] = (median_time(lambda: sweeps.contact_sums(u, g, approach, p), r), 3)
     t_work = np.empty_like(t)
     z = np.where(p > 0, u, 0.0)  # stands for the preconditioned gap; as in the loop, it is in the FFT buffer
 
@@ -126,43 +136,37 @@ def measure(n: int, args) -> dict:
         np.copyto(plan.real, z)
 
     parts["D conjugate_direction"] = (  # writes t over z, in place, as the loop does
-        median_time(lambda: fz.conjugate_direction(plan.real, 0.0, g, approach, p, 0.5, t_work, plan.real), r,
+        median_time(lambda: sweeps.conjugate_direction(plan.real, 0.0, g, approach, p, 0.5, t_work, plan.real), r,
                     fresh_direction), 6)
     p_work = np.empty_like(p)
     parts["E step_project_reenter"] = (
-        median_time(lambda: fz.step_project_reenter(p_work, 1.0, t, g, approach, 1e-3, 1e-3, plan.real), r,
+        median_time(lambda: sweeps.step_project_reenter(p_work, 1.0, t, g, approach, 1e-3, 1e-3, plan.real), r,
                     lambda: np.copyto(p_work, p)), 6)
 
     flat = np.ascontiguousarray(heights).ravel()
-    _stream_read(flat)
-    transfer = median_time(lambda: _stream_read(flat), max(r, 9))
+    read = _stream_read if numba_threads == 1 else _stream_read_parallel
+    read(flat)
+    transfer = median_time(lambda: read(flat), max(r, 9))
     pair = median_time(lambda: (plan.forward(), plan.inverse()), max(r, 9))
-    out = {"n": n, "contact_fraction": float(np.mean(p > 0)), "calibrated_contact": contact,
-           "mean_pressure": mean_pressure, "iterations_full_solve": full.iterations,
-           "t_iteration": t_iteration, "t_fft_pair": pair, "t_transfer": transfer,
-           "read_bandwidth_gb_s": flat.nbytes / transfer / 1e9,
-           "parts": {k: {"seconds": v[0], "transfers": v[1]} for k, v in parts.items()}}
-    if 2 in args.threads:
-        numba.set_num_threads(min(2, numba.config.NUMBA_NUM_THREADS))
-        _stream_read_parallel(flat)
-        out["t_transfer_2_threads"] = median_time(lambda: _stream_read_parallel(flat), max(r, 9))
-        numba.set_num_threads(1)
-    return out
+    return {"n": n, "threads": threads, "sweep_threads": numba_threads, "contact_fraction": float(np.mean(p > 0)),
+            "calibrated_contact": contact, "mean_pressure": mean_pressure, "iterations_full_solve": full.iterations,
+            "t_iteration": t_iteration, "t_fft_pair": pair, "t_transfer": transfer,
+            "read_bandwidth_gb_s": flat.nbytes / transfer / 1e9,
+            "parts": {k: {"seconds": v[0], "transfers": v[1]} for k, v in parts.items()}}
 
 
 def _parseval(spectrum, multiplier, even):
-    return _weighted_power_sum(spectrum.reshape(-1, spectrum.shape[-1]),
-                               multiplier.reshape(-1, multiplier.shape[-1]), even)
+    return weighted_power_sum(spectrum.reshape(-1, spectrum.shape[-1]),
+                              multiplier.reshape(-1, multiplier.shape[-1]), even)
 
 
 def report(res: dict) -> str:
     pair, tr = res["t_fft_pair"], res["t_transfer"]
-    lines = [f"### N = {res['n']}, contact fraction {res['contact_fraction']:.3f}",
+    lines = [f"### N = {res['n']}, {res['threads']} FFTW thread(s), sweeps on {res['sweep_threads']}, "
+             f"contact fraction {res['contact_fraction']:.3f}",
              "",
-             f"FFT pair {pair * 1e3:.2f} ms; one array transfer (streaming read of {res['n']}^2 float64) "
-             f"{tr * 1e3:.3f} ms = {res['read_bandwidth_gb_s']:.1f} GB/s"
-             + (f"; with 2 threads {res['t_transfer_2_threads'] * 1e3:.3f} ms "
-                f"({tr / res['t_transfer_2_threads']:.2f}x)" if "t_transfer_2_threads" in res else ""),
+             f"FFT pair {pair * 1e3:.2f} ms; one array transfer (streaming read of {res['n']}^2 float64 on "
+             f"{res['sweep_threads']} thread(s)) {tr * 1e3:.3f} ms = {res['read_bandwidth_gb_s']:.1f} GB/s",
              "",
              "| part | time [ms] | FFT pairs | transfers | bandwidth floor [ms] | time / floor |",
              "|---|---|---|---|---|---|"]
@@ -203,7 +207,8 @@ def main(argv=None) -> int:
     ap.add_argument("--contact", type=float, default=0.1, help="target contact fraction")
     ap.add_argument("--iterations", type=int, default=20, help="iterations before the state is frozen")
     ap.add_argument("--repeats", type=int, default=15)
-    ap.add_argument("--threads", type=int, nargs="+", default=[1], help="add 2: streaming read with 2 threads too")
+    ap.add_argument("--threads", type=int, nargs="+", default=[1],
+                    help="FFTW and sweep threads, one pass each (the sweeps thread above 1 on large grids)")
     ap.add_argument("--tol", type=float, default=1e-8)
     ap.add_argument("--calibration-tol", type=float, default=1e-6, help="of the solves that find the load")
     ap.add_argument("--json", type=Path)
@@ -212,9 +217,13 @@ def main(argv=None) -> int:
         ap.add_argument(f"--{name}", type=float, default=default)
     ap.add_argument("--seed", type=int, default=1)
     args = ap.parse_args(argv)
-    results = [measure(n, args) for n in args.sizes]
-    print(f"contactlib {contactlib.__version__}, numba {numba.__version__}, 1 FFTW thread, load control, "
-          f"spectral kernel, preconditioned\n")
+    results = [res for n in args.sizes for res in measure(n, args)]
+    try:
+        layer = f"{numba.threading_layer()} threads"
+    except ValueError:  # no threaded sweep ran
+        layer = "serial sweeps"
+    print(f"contactlib {contactlib.__version__}, numba {numba.__version__} ({layer}), load control, spectral kernel, "
+          "preconditioned\n")
     print("\n\n".join(report(res) for res in results))
     if args.json:
         args.json.write_text(json.dumps(results, indent=1))

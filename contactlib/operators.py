@@ -14,38 +14,67 @@ import numba
 import numpy as np
 
 from . import fft
+from ._numba import column_sums, jit, parallel_sweeps, twins
 from .grid import Grid
 from .kernels import elastic
 
 KERNELS = ("spectral", "love")
 
 
-@numba.njit(cache=True, nogil=True, fastmath={"reassoc", "contract", "nsz"})
-def _weighted_power_sum(spectrum, multiplier, even):
+@jit
+def _power_row(spectrum, multiplier, even):
+    """``(sum_q |S|^2 M, the same over the columns without a mirror image)`` for one row."""
+    last = spectrum.shape[0] - 1
+    total = 0.0
+    for j in range(spectrum.shape[0]):  # branch-free loop: it vectorises
+        s = spectrum[j]
+        total += (s.real * s.real + s.imag * s.imag) * multiplier[j]
+    s = spectrum[0]
+    edges = (s.real * s.real + s.imag * s.imag) * multiplier[0]
+    if even and last > 0:
+        s = spectrum[last]
+        edges += (s.real * s.real + s.imag * s.imag) * multiplier[last]
+    return total, edges
+
+
+def _weighted_power_sums(spectrum, multiplier, even):
+    """``[sum_q |S(q)|^2 M(q), the same over the first column and, for an even last axis, the
+    last one]`` over an rfft half-spectrum (2D view): ``2 * first - second`` is the full sum."""
+    part = np.empty((spectrum.shape[0], 2))
+    for i in numba.prange(spectrum.shape[0]):
+        part[i, 0], part[i, 1] = _power_row(spectrum[i], multiplier[i], even)
+    return column_sums(part)
+
+
+def _scale_spectrum(spectrum, multiplier):
+    """``spectrum *= multiplier`` in place (2D views): one pass, where numpy's complex-by-real
+    in-place multiply takes 1.3-3x longer (benchmarks/bench_iteration.py); the same bits serial
+    or threaded."""
+    for i in numba.prange(spectrum.shape[0]):
+        for j in range(spectrum.shape[1]):
+            spectrum[i, j] = spectrum[i, j] * multiplier[i, j]
+
+
+_weighted_power_sums_serial, _weighted_power_sums_parallel = twins(_weighted_power_sums)
+_scale_spectrum_serial, _scale_spectrum_parallel = twins(_scale_spectrum, fastmath=False)  # bits as numpy's
+
+
+def weighted_power_sum(spectrum: np.ndarray, multiplier: np.ndarray, even: bool) -> float:
     """``sum_q w |S(q)|^2 M(q)`` over an rfft half-spectrum (2D view), ``w = 2`` but for the first
     column and, for an even last axis, the last one (they have no mirror image)."""
-    last = spectrum.shape[1] - 1
-    total = 0.0
-    edges = 0.0
-    for i in range(spectrum.shape[0]):
-        for j in range(spectrum.shape[1]):  # branch-free inner loop: it vectorises
-            s = spectrum[i, j]
-            total += (s.real * s.real + s.imag * s.imag) * multiplier[i, j]
-        s = spectrum[i, 0]
-        edges += (s.real * s.real + s.imag * s.imag) * multiplier[i, 0]
-        if even and last > 0:
-            s = spectrum[i, last]
-            edges += (s.real * s.real + s.imag * s.imag) * multiplier[i, last]
+    sweep = _weighted_power_sums_parallel if parallel_sweeps(*_rows_size(spectrum)) else _weighted_power_sums_serial
+    total, edges = sweep(spectrum, multiplier, even)
     return 2.0 * total - edges
 
 
-@numba.njit(cache=True, nogil=True, boundscheck=False)
-def _scale_spectrum(spectrum, multiplier):
-    """``spectrum *= multiplier`` in place (2D views): one pass, where numpy's complex-by-real
-    in-place multiply takes 1.3-3x longer (benchmarks/bench_iteration.py); same bits."""
-    for i in range(spectrum.shape[0]):
-        for j in range(spectrum.shape[1]):
-            spectrum[i, j] = spectrum[i, j] * multiplier[i, j]
+def scale_spectrum(spectrum: np.ndarray, multiplier: np.ndarray) -> None:
+    """``spectrum *= multiplier`` in place (2D views)."""
+    sweep = _scale_spectrum_parallel if parallel_sweeps(*_rows_size(spectrum)) else _scale_spectrum_serial
+    sweep(spectrum, multiplier)
+
+
+def _rows_size(spectrum: np.ndarray) -> tuple[int, int]:
+    return spectrum.shape[0], 2 * spectrum.size  # a complex half-spectrum: about as many reals as the grid
 
 
 @lru_cache(maxsize=8)
@@ -133,7 +162,7 @@ class Compliance:
     def _convolve(self, plan: fft.RealFFT, multiplier: np.ndarray) -> np.ndarray:
         """Forward transform of ``plan.real``, times ``multiplier``, back: a view of the block."""
         spectrum = plan.forward()
-        _scale_spectrum(spectrum.reshape(-1, spectrum.shape[-1]), multiplier.reshape(-1, multiplier.shape[-1]))
+        scale_spectrum(spectrum.reshape(-1, spectrum.shape[-1]), multiplier.reshape(-1, multiplier.shape[-1]))
         return plan.inverse()[self._block]
 
     def quadratic_form(self) -> float:
@@ -141,7 +170,7 @@ class Compliance:
         :meth:`load`: by Parseval, from the forward transform alone (half the cost of a convolution)."""
         plan = fft.get_fft(self.work_shape)
         spectrum = plan.forward()
-        return float(_weighted_power_sum(spectrum.reshape(-1, spectrum.shape[-1]),
+        return float(weighted_power_sum(spectrum.reshape(-1, spectrum.shape[-1]),
                                          self.multiplier.reshape(-1, self.multiplier.shape[-1]),
                                          self.work_shape[-1] % 2 == 0))
 

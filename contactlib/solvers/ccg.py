@@ -114,6 +114,7 @@ def solve_polonsky_keer(
 
     g = np.empty_like(p)
     t = np.zeros_like(p)
+    sweeps = fz.select(p.shape)
     unused = np.empty((1, 1))
     G_old, restart, t_kept = 1.0, True, 0.0
     residual, approach = np.inf, float(penetration or 0.0)
@@ -122,12 +123,12 @@ def solve_polonsky_keer(
     it = 0
     for it in range(max_iter + 1):
         u = fz.as2d(operator.convolve())
-        n_contact, g_sum = fz.gap_and_contact_mean(u, factor, hp, p, g)
+        n_contact, g_sum = sweeps.gap_and_contact_mean(u, factor, hp, p, g)
         if load_control:
             approach = g_sum / n_contact
         masked = fz.as2d(operator.load()) if precondition else unused
         # g stays unshifted: the gap is g - approach, folded into the sums below
-        comp, pen, G, psum = fz.measure(g, p, factor, approach, masked, precondition)
+        comp, pen, G, psum = sweeps.measure(g, p, factor, approach, masked, precondition)
         residual = (comp + psum * pen / n) / (psum * scale) if psum > 0 else pen / (n * scale)
         own = residual
         if verify is not None and residual <= (tol if verify_below is None else verify_below):
@@ -144,7 +145,7 @@ def solve_polonsky_keer(
             break
         if precondition:  # z = P gap on the contact set; G = sum_c z gap
             z = fz.as2d(operator.convolve(inverse=True))
-            z_sum, G = fz.contact_sums(z, g, approach, p)
+            z_sum, G = sweeps.contact_sums(z, g, approach, p)
             z_offset = 0.0
         else:  # z = gap, centred on the contact set under load control
             z, z_sum, z_offset = g, 0.0, approach
@@ -153,11 +154,11 @@ def solve_polonsky_keer(
         # under load control t is centred on the contact set, so a step keeps the load; t_kept is
         # the previous direction's sum over the current contact set
         shift = z_offset + ((z_sum + beta * t_kept) / n_contact if load_control else 0.0)
-        gt = fz.conjugate_direction(z, shift, g, approach, p, beta, t, fz.as2d(operator.load()))[1]
+        gt = sweeps.conjugate_direction(z, shift, g, approach, p, beta, t, fz.as2d(operator.load()))[1]
         tKt = operator.quadratic_form()  # <t, K t> by Parseval: no inverse transform
         tau = gt / tKt if tKt > 0 else 1.0 / (self_compliance * reentry)  # no direction: re-entry only
-        psum, n_overlap, t_kept = fz.step_project_reenter(p, factor, t, g, approach, tau, tau * reentry,
-                                                          fz.as2d(operator.load()))
+        psum, n_overlap, t_kept = sweeps.step_project_reenter(p, factor, t, g, approach, tau, tau * reentry,
+                                                              fz.as2d(operator.load()))
         restart = n_overlap > 0
         if load_control:
             if psum <= 0:  # lost every point: restart from the highest point
