@@ -92,7 +92,7 @@ def measure_threads(threads: int, heights, op, mean_pressure, contact, mid, args
     n = heights.shape[0]
     cfft.set_fft_options(threads=threads)
     sweeps = fz.select(heights.shape)
-    numba_threads = numba.get_num_threads() if sweeps is fz._PARALLEL else 1
+    numba_threads = numba.get_num_threads() if sweeps is fz.THREADED else 1
     solve_polonsky_keer(op, heights, mean_pressure=mean_pressure, tol=0.0, max_iter=2)  # plans, compiles
     # a whole solve: the time per iteration the parts must add up to
     t0 = time.perf_counter()

@@ -1,55 +1,57 @@
-"""numba compilation of the element-wise sweeps: one flag set, and serial/parallel twins.
+"""numba compilation of the element-wise sweeps, and their threaded versions.
 
-A sweep is written as a loop over grid rows (``numba.prange``) that stores each row's partial
-sums in a ``(rows, k)`` array, reduced by :func:`column_sums` in row order. Compiled twice, it runs
-serially or over threads; each row's sums do not depend on which thread computed them and the
-final reduction is sequential, so both twins return the same bits whatever the thread count.
-:func:`parallel_sweeps` picks the twin from the thread setting of :mod:`contactlib.fft`.
+A sweep is first written serially, over a whole 2D array. Its threaded version (``threaded_*``)
+cuts the rows into blocks fixed by the array's shape (:func:`row_blocks`), runs the serial sweep
+on each block in a ``numba.prange`` loop, and adds the blocks' sums in block order. No sum depends
+on which thread computed it, so a threaded sweep returns the same bits on 2 threads or 16; they
+differ from the serial sweep's in round-off, as FFTW's threaded transforms do from its serial ones.
+:func:`parallel_sweeps` says when to thread, from the thread setting of :mod:`contactlib.fft`.
 """
 
 from __future__ import annotations
-
-import types
 
 import numba
 import numpy as np
 
 from . import fft
 
-# reassociation lets the row reductions vectorise; no finite-math assumptions (NaN must propagate)
+# reassociation lets the reductions vectorise; no finite-math assumptions (NaN must propagate)
 FASTMATH = {"reassoc", "contract", "nsz"}
 jit = numba.njit(cache=True, nogil=True, fastmath=FASTMATH, boundscheck=False)
+parallel_jit = numba.njit(cache=True, nogil=True, fastmath=FASTMATH, boundscheck=False, parallel=True)
 
 PARALLEL_MIN_SIZE = 1 << 16
 """Smallest grid (points) swept on several threads: below it, starting the threads costs more than
 the sweep (a 256^2 sweep streams a few MB, tens of microseconds)."""
 
-
-def twins(driver, fastmath=FASTMATH):
-    """``(serial, parallel)`` compilations of a row-loop ``driver``. The parallel one is compiled
-    from a copy with its own qualified name: numba's on-disk cache keys on the name and signature,
-    not on the ``parallel`` flag, so one name would load the other's machine code."""
-    copy = types.FunctionType(driver.__code__, driver.__globals__, driver.__name__ + "_parallel",
-                              driver.__defaults__, driver.__closure__)
-    copy.__qualname__ = driver.__qualname__ + "_parallel"
-    copy.__doc__ = driver.__doc__
-    flags = dict(cache=True, nogil=True, fastmath=fastmath, boundscheck=False)
-    return numba.njit(**flags)(driver), numba.njit(parallel=True, **flags)(copy)
+BLOCK_SIZE = 1 << 13
+"""Points per row block of a threaded sweep (whole rows, at least one): enough that a block's
+start-up is small beside its sweep, few enough blocks to share out evenly."""
 
 
 def parallel_sweeps(rows: int, size: int) -> bool:
     """Whether sweeps over a grid of ``rows`` rows and ``size`` points run on several threads: the
     FFT thread setting is above 1, the grid is large enough and has rows for every thread. Sets
     numba's thread count (per calling thread) to match."""
-    threads = min(fft.fft_options()["threads"], numba.config.NUMBA_NUM_THREADS)
-    if threads < 2 or rows < 2 * threads or size < PARALLEL_MIN_SIZE:
+    threads = fft.threads()
+    if threads < 2 or size < PARALLEL_MIN_SIZE:
+        return False
+    threads = min(threads, numba.config.NUMBA_NUM_THREADS)
+    if threads < 2 or rows < 2 * threads:
         return False
     if numba.get_num_threads() != threads:
         numba.set_num_threads(threads)
     return True
 
 
-@numba.njit(cache=True, nogil=True)  # no fastmath: the row order of the sum is fixed
+@numba.njit(cache=True, nogil=True)
+def row_blocks(rows: int, columns: int) -> tuple[int, int]:
+    """``(number of blocks, rows per block)`` of a threaded sweep over a ``rows x columns`` grid."""
+    per_block = max(1, BLOCK_SIZE // max(columns, 1))
+    return (rows + per_block - 1) // per_block, per_block
+
+
+@numba.njit(cache=True, nogil=True)  # no fastmath: the block order of the sum is fixed
 def column_sums(part: np.ndarray) -> np.ndarray:
     """Sums of each column of ``part``, adding the rows in order."""
     out = np.zeros(part.shape[1])

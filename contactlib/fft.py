@@ -52,6 +52,11 @@ def fft_options() -> dict:
     return dict(_settings)
 
 
+def threads() -> int:
+    """The thread count of :func:`set_fft_options` (read in every iteration: no copy)."""
+    return _settings["threads"]
+
+
 def export_wisdom() -> tuple[bytes, ...]:
     return pyfftw.export_wisdom()
 

@@ -14,7 +14,7 @@ import numba
 import numpy as np
 
 from . import fft
-from ._numba import column_sums, jit, parallel_sweeps, twins
+from ._numba import column_sums, jit, parallel_jit, parallel_sweeps, row_blocks
 from .grid import Grid
 from .kernels import elastic
 
@@ -22,59 +22,61 @@ KERNELS = ("spectral", "love")
 
 
 @jit
-def _power_row(spectrum, multiplier, even):
-    """``(sum_q |S|^2 M, the same over the columns without a mirror image)`` for one row."""
-    last = spectrum.shape[0] - 1
+def _weighted_power_sum(spectrum, multiplier, even):
+    """``sum_q w |S(q)|^2 M(q)`` over an rfft half-spectrum (2D view), ``w = 2`` but for the first
+    column and, for an even last axis, the last one (they have no mirror image)."""
+    last = spectrum.shape[1] - 1
     total = 0.0
-    for j in range(spectrum.shape[0]):  # branch-free loop: it vectorises
-        s = spectrum[j]
-        total += (s.real * s.real + s.imag * s.imag) * multiplier[j]
-    s = spectrum[0]
-    edges = (s.real * s.real + s.imag * s.imag) * multiplier[0]
-    if even and last > 0:
-        s = spectrum[last]
-        edges += (s.real * s.real + s.imag * s.imag) * multiplier[last]
-    return total, edges
+    edges = 0.0
+    for i in range(spectrum.shape[0]):
+        for j in range(spectrum.shape[1]):  # branch-free inner loop: it vectorises
+            s = spectrum[i, j]
+            total += (s.real * s.real + s.imag * s.imag) * multiplier[i, j]
+        s = spectrum[i, 0]
+        edges += (s.real * s.real + s.imag * s.imag) * multiplier[i, 0]
+        if even and last > 0:
+            s = spectrum[i, last]
+            edges += (s.real * s.real + s.imag * s.imag) * multiplier[i, last]
+    return 2.0 * total - edges
 
 
-def _weighted_power_sums(spectrum, multiplier, even):
-    """``[sum_q |S(q)|^2 M(q), the same over the first column and, for an even last axis, the
-    last one]`` over an rfft half-spectrum (2D view): ``2 * first - second`` is the full sum."""
-    part = np.empty((spectrum.shape[0], 2))
-    for i in numba.prange(spectrum.shape[0]):
-        part[i, 0], part[i, 1] = _power_row(spectrum[i], multiplier[i], even)
-    return column_sums(part)
-
-
+@numba.njit(cache=True, nogil=True, boundscheck=False)
 def _scale_spectrum(spectrum, multiplier):
     """``spectrum *= multiplier`` in place (2D views): one pass, where numpy's complex-by-real
-    in-place multiply takes 1.3-3x longer (benchmarks/bench_iteration.py); the same bits serial
-    or threaded."""
-    for i in numba.prange(spectrum.shape[0]):
+    in-place multiply takes 1.3-3x longer (benchmarks/bench_iteration.py); same bits."""
+    for i in range(spectrum.shape[0]):
         for j in range(spectrum.shape[1]):
             spectrum[i, j] = spectrum[i, j] * multiplier[i, j]
 
 
-_weighted_power_sums_serial, _weighted_power_sums_parallel = twins(_weighted_power_sums)
-_scale_spectrum_serial, _scale_spectrum_parallel = twins(_scale_spectrum, fastmath=False)  # bits as numpy's
+@parallel_jit
+def _threaded_weighted_power_sum(spectrum, multiplier, even):
+    blocks, size = row_blocks(spectrum.shape[0], spectrum.shape[1])
+    part = np.empty((blocks, 1))
+    for b in numba.prange(blocks):
+        r = slice(b * size, min((b + 1) * size, spectrum.shape[0]))
+        part[b, 0] = _weighted_power_sum(spectrum[r], multiplier[r], even)
+    return column_sums(part)[0]
+
+
+@numba.njit(cache=True, nogil=True, boundscheck=False, parallel=True)
+def _threaded_scale_spectrum(spectrum, multiplier):
+    blocks, size = row_blocks(spectrum.shape[0], spectrum.shape[1])
+    for b in numba.prange(blocks):
+        r = slice(b * size, min((b + 1) * size, spectrum.shape[0]))
+        _scale_spectrum(spectrum[r], multiplier[r])
 
 
 def weighted_power_sum(spectrum: np.ndarray, multiplier: np.ndarray, even: bool) -> float:
-    """``sum_q w |S(q)|^2 M(q)`` over an rfft half-spectrum (2D view), ``w = 2`` but for the first
-    column and, for an even last axis, the last one (they have no mirror image)."""
-    sweep = _weighted_power_sums_parallel if parallel_sweeps(*_rows_size(spectrum)) else _weighted_power_sums_serial
-    total, edges = sweep(spectrum, multiplier, even)
-    return 2.0 * total - edges
+    """:func:`_weighted_power_sum`, threaded like the solvers' sweeps (:mod:`contactlib._numba`)."""
+    threaded = parallel_sweeps(spectrum.shape[0], 2 * spectrum.size)  # a half-spectrum: about the grid's size
+    return (_threaded_weighted_power_sum if threaded else _weighted_power_sum)(spectrum, multiplier, even)
 
 
 def scale_spectrum(spectrum: np.ndarray, multiplier: np.ndarray) -> None:
-    """``spectrum *= multiplier`` in place (2D views)."""
-    sweep = _scale_spectrum_parallel if parallel_sweeps(*_rows_size(spectrum)) else _scale_spectrum_serial
-    sweep(spectrum, multiplier)
-
-
-def _rows_size(spectrum: np.ndarray) -> tuple[int, int]:
-    return spectrum.shape[0], 2 * spectrum.size  # a complex half-spectrum: about as many reals as the grid
+    """:func:`_scale_spectrum`, threaded like the solvers' sweeps (the same bits either way)."""
+    threaded = parallel_sweeps(spectrum.shape[0], 2 * spectrum.size)
+    (_threaded_scale_spectrum if threaded else _scale_spectrum)(spectrum, multiplier)
 
 
 @lru_cache(maxsize=8)
@@ -171,8 +173,8 @@ class Compliance:
         plan = fft.get_fft(self.work_shape)
         spectrum = plan.forward()
         return float(weighted_power_sum(spectrum.reshape(-1, spectrum.shape[-1]),
-                                         self.multiplier.reshape(-1, self.multiplier.shape[-1]),
-                                         self.work_shape[-1] % 2 == 0))
+                                        self.multiplier.reshape(-1, self.multiplier.shape[-1]),
+                                        self.work_shape[-1] % 2 == 0))
 
     def __call__(self, pressure: np.ndarray, out: np.ndarray | None = None) -> np.ndarray:
         """Displacement [length] due to ``pressure`` [pressure]; writes into ``out`` if given."""
