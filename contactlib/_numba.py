@@ -1,6 +1,6 @@
 """numba compilation of the element-wise sweeps, and their threaded versions.
 
-A sweep is first written serially, over a whole 2D array. Its threaded version (``threaded_*``)
+A sweep is first written serially, over a whole 2D array. Its threaded version (``_threaded_*``)
 cuts the rows into blocks fixed by the array's shape (:func:`row_blocks`), runs the serial sweep
 on each block in a ``numba.prange`` loop, and adds the blocks' sums in block order. No sum depends
 on which thread computed it, so a threaded sweep returns the same bits on 2 threads or 16; they
