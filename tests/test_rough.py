@@ -118,3 +118,46 @@ def test_negative_penetration_is_no_contact(material, rough64):
     out = contactlib.solve(rough64, E=material["E"], nu=material["nu"], penetration=-1e-3)
     assert float(out.contact_area) == 0.0 and float(out.mean_pressure) == 0.0
     assert float(out.gap.min()) == pytest.approx(1e-3)
+
+
+def _compliance_and_heights(dim, n):
+    from contactlib.grid import Grid
+    from contactlib.operators import Compliance
+
+    h = contactlib.surfaces.self_affine(n, hurst=0.8, q_roll=4, q_cutoff=n // 8, rms_slope=0.1, seed=1,
+                                        dim=dim).values
+    return Compliance(Grid(h.shape, (1.0,) * dim), E_star=1.0), h
+
+
+def test_kept_directions_converge_sooner_to_the_same_answer():
+    """The default restart rule (conjugacy kept through re-entries of under 1 % of the contact set)
+    against Polonsky & Keer's (restart on every re-entry), 512^2 at 47 % contact: the same pressure
+    field to the accuracy both promise, in at least 1.5x fewer iterations (1.9x here)."""
+    from contactlib.solvers import solve_polonsky_keer
+
+    op, h = _compliance_and_heights(2, 512)
+    kept = solve_polonsky_keer(op, h, mean_pressure=0.03, tol=1e-10)
+    restarted = solve_polonsky_keer(op, h, mean_pressure=0.03, tol=1e-10, restart_fraction=0.0)
+    assert kept.converged and restarted.converged
+    assert 0.3 < np.mean(kept.pressure > 0) < 0.7
+    assert 1.5 * kept.iterations <= restarted.iterations
+    assert np.linalg.norm(kept.pressure - restarted.pressure) <= 1e-8 * np.linalg.norm(restarted.pressure)
+    assert kept.penetration == pytest.approx(restarted.penetration, rel=1e-9)
+
+
+def test_kept_directions_converge_where_restarts_stall():
+    """A 16384-point profile at 75 % contact: restarting on every re-entry stalls at residual ~5e-3;
+    the default rule converges, and the dual solver (displacement control, another formulation) at
+    its penetration gives back the load and the pressure field."""
+    from contactlib.solvers import solve_polonsky_keer
+    from contactlib.solvers.dual import solve_periodic_displacement
+
+    op, h = _compliance_and_heights(1, 16384)
+    restarted = solve_polonsky_keer(op, h, mean_pressure=0.05, tol=1e-10, restart_fraction=0.0)
+    assert not restarted.converged and restarted.residual > 1e-3
+    kept = solve_polonsky_keer(op, h, mean_pressure=0.05, tol=1e-10)
+    assert kept.converged and kept.residual <= 1e-10
+    dual = solve_periodic_displacement(op, h, penetration=kept.penetration, tol=1e-10)
+    assert dual.converged
+    assert dual.mean_pressure == pytest.approx(0.05, rel=1e-7)
+    assert np.linalg.norm(dual.pressure - kept.pressure) <= 1e-6 * np.linalg.norm(kept.pressure)

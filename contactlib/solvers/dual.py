@@ -81,9 +81,12 @@ def solve_periodic_displacement(
     if initial_pressure is not None:
         initial = np.maximum(operator.apply_aside(np.maximum(initial_pressure, 0.0)) - hp - penetration, 0.0)
     watch = None if monitor is None else (lambda it, residual, snapshot: monitor(it, residual, lambda: primal(snapshot())))
+    # restarts on every re-entry: the dual's "contact set" is the open gap, nearly the whole surface at
+    # low contact, so the primal's fraction rule would hardly ever restart (97-266 iterations against
+    # 14-23 on 256^2-1024^2 at 0.2-0.4 % contact)
     dual = solve_polonsky_keer(stiffness, dual_heights, mean_pressure=mean_gap, tol=tol, max_iter=max_iter,
                                initial_pressure=initial, monitor=watch, verify=lambda s: primal(s).residual,
-                               verify_below=verify_below)
+                               verify_below=verify_below, restart_fraction=0.0)
     answer = primal(dual)
     # the loop stops on max(dual, primal) residual: report the primal one, with the loop's verdict
     return dataclasses.replace(answer, converged=bool(dual.residual <= tol and answer.residual <= tol))
