@@ -14,7 +14,8 @@ from typing import NamedTuple
 import numba
 import numpy as np
 
-from .._numba import column_sums, jit as _jit, parallel_jit, parallel_sweeps, row_blocks
+from .._numba import column_sums, parallel_jit, parallel_sweeps, row_blocks
+from .._numba import jit as _jit
 
 # The contact set ``p > 0`` is patchy on rough surfaces, so the sweeps select with arithmetic
 # rather than branches: mispredicted branches made the projection step cost up to one FFT pair.

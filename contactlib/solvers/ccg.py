@@ -27,10 +27,11 @@ RESTART_FRACTION = 0.01
 """The conjugacy restarts (``beta = 0``) when a step re-enters more than this fraction of the contact
 set. Polonsky & Keer restart on any re-entry; on rough surfaces some points re-enter at nearly every
 step, which left a preconditioned steepest descent (1024^2 at 48 % contact: 108 restarts in 109
-iterations). Keeping the direction through small re-entries takes 2-3.3x fewer iterations at 12-50 %
-contact on 512^2-2048^2 grids and 2-5x on a 65536-point profile, to the same accuracy at the same
-``tol``; near full contact it may cost a few (23 -> 32 at 97 %). A solve that stalls with it goes on
-with restarts on every re-entry (``benchmarks/bench_restart.py``)."""
+iterations). Keeping the direction through small re-entries takes 1.15-1.8x fewer iterations at ~10 %
+contact and 1.7-2.9x at ~50 % on 512^2-2048^2 grids, 1.5-5.3x on a 65536-point profile, to the same
+accuracy at the same ``tol``; at 1 % contact or less it changes little, near full contact it may cost
+a few (23 -> 32 at 97 %). A solve that stalls with it goes on with restarts on every re-entry
+(``benchmarks/bench_restart.py``)."""
 
 STALL_ITERATIONS = 500
 """Stop when the best residual has not dropped by 1 % for this many iterations: near round-off
