@@ -36,7 +36,9 @@ a few (23 -> 32 at 97 %). A solve that stalls with it goes on with restarts on e
 STALL_ITERATIONS = 500
 """Stop when the best residual has not dropped by 1 % for this many iterations: near round-off
 (about 1e-12 relative on 2048^2 grids) the residual wanders instead of falling, and waiting for
-``max_iter`` would cost minutes for nothing. The state is returned as not converged."""
+``max_iter`` would cost minutes for nothing. A stall with the fraction rule of :data:`RESTART_FRACTION`
+switches to restarts on every re-entry and gives that another ``STALL_ITERATIONS``; a stall then
+returns the state as not converged."""
 
 
 def solve_polonsky_keer(
