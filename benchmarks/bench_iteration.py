@@ -5,15 +5,17 @@ For each N, a self-affine surface is solved under load control for ``--iteration
 (a realistic contact set and pressure), and then every part of one iteration is timed alone on
 that state, ``--repeats`` times (median):
 
-* the transforms: forward and inverse planned FFTs of the grid (``contactlib.fft.get_fft``);
-* the two Fourier multiplies (``K``, and the preconditioner) and the Parseval sum ``<t, K t>``;
+* the transforms: forward and inverse planned FFTs of the solver's buffers
+  (``Compliance.iteration_transforms``);
+* the three passes over a spectrum: ``K p`` minus the heights, the preconditioner with its Parseval
+  sum, and the Parseval sum ``<t, K t>``;
 * the five fused element-wise sweeps of ``contactlib.solvers._fused``, in the order the loop
-  calls them.
+  calls them (the contact sum twice).
 
 Each part is also given in *array transfers*: how many times it must move an n-element float64
 array through memory (a read is 1; a write is 2, since the cache line is read before it is written,
 or 1 where the sweep read that element already; an rfft half-spectrum of complex numbers counts as
-one array, its real multiplier as half). Times one transfer, measured by
+one array, its real multiplier as half, the byte mask of the contact set as an eighth). Times one transfer, measured by
 a streaming read of a grid-sized array, this is the floor that memory bandwidth sets under each
 sweep, whatever the code. ``--threads 1 2`` repeats everything with FFTW and the sweeps on two threads
 (the streaming read too), from the same mid-solve state.
@@ -41,7 +43,8 @@ import numpy as np
 import contactlib
 from contactlib import fft as cfft
 from contactlib.grid import Grid
-from contactlib.operators import Compliance, scale_spectrum, weighted_power_sum
+from contactlib import operators as op_module
+from contactlib.operators import Compliance, weighted_power_sum
 from contactlib.solvers import _fused as fz
 from contactlib.solvers import solve_polonsky_keer
 
@@ -101,53 +104,53 @@ def measure_threads(threads: int, heights, op, mean_pressure, contact, mid, args
 
     hp = heights - heights.max()
     p = np.ascontiguousarray(mid.pressure)
+    contact = p > 0
     approach = mid.penetration
-    g = np.ascontiguousarray(mid.gap + approach)
-    t = np.where(p > 0, mid.gap, 0.0)
-    plan = cfft.get_fft(heights.shape)
-    u = np.ascontiguousarray(mid.displacement)
-    spectrum_copy = np.empty_like(plan.spectrum)
+    t = np.where(contact, mid.gap, 0.0)
     r = args.repeats
-
-    def load(field):
-        return lambda: np.copyto(plan.real, field)
-
     parts = {}
-    parts["forward FFT"] = (median_time(plan.forward, r, load(p)), 0)
-    plan.forward()
-    spectrum_copy[...] = plan.spectrum
-    parts["inverse FFT"] = (median_time(plan.inverse, r, lambda: np.copyto(plan.spectrum, spectrum_copy)), 0)
-    multiplier = op.multiplier
-    s2, m2 = plan.spectrum.reshape(-1, plan.spectrum.shape[-1]), multiplier.reshape(-1, multiplier.shape[-1])
-    parts["multiply K (x2: K p, preconditioner)"] = (
-        2 * median_time(lambda: scale_spectrum(s2, m2), r, lambda: np.copyto(plan.spectrum, spectrum_copy)), 2 * 2.5)
-    even = heights.shape[-1] % 2 == 0
-    parts["Parseval <t, K t>"] = (median_time(lambda: _parseval(plan.spectrum, multiplier, even), r), 1.5)
-    work = np.empty_like(p)
-    parts["A gap_and_contact_mean"] = (median_time(lambda: sweeps.gap_and_contact_mean(u, 1.0, hp, p, work), r), 5)
-    parts["B measure (+ masked gap)"] = (
-        median_time(lambda: sweeps.measure(g, p, 1.0, approach, plan.real, True), r), 4)
-    parts["C contact_sums"] = (median_time(lambda: sweeps.contact_sums(u, g, approach, p), r), 3)
-    t_work = np.empty_like(t)
-    z = np.where(p > 0, u, 0.0)  # stands for the preconditioned gap; as in the loop, it is in the FFT buffer
+    with op.iteration_transforms(offset=hp) as tr:
+        ws = tr._workspace
+        tr.pressure[...] = p
+        parts["forward FFT"] = (median_time(lambda: ws.forward("pressure"), r), 0)
+        spectrum_copy = ws.spectrum.copy()
 
-    def fresh_direction():
-        np.copyto(t_work, t)
-        np.copyto(plan.real, z)
+        def fresh_spectrum():
+            np.copyto(ws.spectrum, spectrum_copy)
 
-    parts["D conjugate_direction"] = (  # writes t over z, in place, as the loop does
-        median_time(lambda: sweeps.conjugate_direction(plan.real, 0.0, g, approach, p, 0.5, t_work, plan.real), r,
-                    fresh_direction), 6)
-    p_work = np.empty_like(p)
-    parts["E step_project_reenter"] = (
-        median_time(lambda: sweeps.step_project_reenter(p_work, 1.0, t, g, approach, 1e-3, 1e-3, plan.real), r,
-                    lambda: np.copyto(p_work, p)), 6)
+        parts["inverse FFT"] = (median_time(lambda: ws.inverse("displacement"), r, fresh_spectrum), 0)
+        rows = ws.spectrum.reshape(-1, ws.spectrum.shape[-1])
+        multiplier, inverse = (m.reshape(-1, m.shape[-1]) for m in (op.multiplier, op.inverse_multiplier))
+        threaded = sweeps is fz.THREADED
+        affine = op_module._THREADED["affine_spectrum"] if threaded else op_module._affine_spectrum
+        scale_power = op_module._THREADED["scale_and_power_sum"] if threaded else op_module._scale_and_power_sum
+        even = heights.shape[-1] % 2 == 0
+        parts["K p - hp (multiply, subtract)"] = (
+            median_time(lambda: affine(rows, multiplier, tr._offset, 1.0), r, fresh_spectrum), 3.5)
+        parts["preconditioner (multiply, Parseval)"] = (
+            median_time(lambda: scale_power(rows, inverse, even), r, fresh_spectrum), 2.5)
+        parts["Parseval <t, K t>"] = (median_time(lambda: _parseval(ws.spectrum, op.multiplier, even), r), 1.5)
+        w = tr.displacement(1.0)  # K p - hp: the gap plus the approach
+        masked = tr.residual
+        parts["A contact_sum (approach)"] = (median_time(lambda: sweeps.contact_sum(w, contact), r), 1.125)
+        parts["B measure (+ masked gap)"] = (
+            median_time(lambda: sweeps.measure(w, 1.0, approach, p, masked, True), r), 4)
+        z = np.where(contact, mid.displacement, 0.0)  # stands for the preconditioned gap
+        parts["C contact_sum (z)"] = (median_time(lambda: sweeps.contact_sum(z, contact), r), 1.125)
+        t_work = tr.direction  # as in the loop, t lives in the FFT input buffer and is updated in place
+        parts["D conjugate_direction"] = (
+            median_time(lambda: sweeps.conjugate_direction(z, 1.0, 0.0, w, 1.0, approach, contact, 0.5, t_work), r,
+                        lambda: np.copyto(t_work, t)), 4.125)
+        p_work, contact_work = tr.pressure, contact.copy()
+        parts["E step_project_reenter"] = (
+            median_time(lambda: sweeps.step_project_reenter(p_work, 1.0, t, w, approach, 1e-3, 1e-3, contact_work),
+                        r, lambda: np.copyto(p_work, p)), 4.25)
+        pair = median_time(lambda: (ws.forward("pressure"), ws.inverse("displacement")), max(r, 9))
 
     flat = np.ascontiguousarray(heights).ravel()
     read = _stream_read if numba_threads == 1 else _stream_read_parallel
     read(flat)
     transfer = median_time(lambda: read(flat), max(r, 9))
-    pair = median_time(lambda: (plan.forward(), plan.inverse()), max(r, 9))
     return {"n": n, "threads": threads, "sweep_threads": numba_threads, "contact_fraction": float(np.mean(p > 0)),
             "calibrated_contact": contact, "mean_pressure": mean_pressure, "iterations_full_solve": full.iterations,
             "t_iteration": t_iteration, "t_fft_pair": pair, "t_transfer": transfer,

@@ -137,6 +137,76 @@ def get_fft(shape: tuple[int, ...], slot: str = "work") -> RealFFT:
     return plan
 
 
+class SharedSpectrum:
+    """Named real buffers sharing one spectrum buffer, each with its own planned transforms.
+
+    ``forward(name)`` maps buffer ``name`` to :attr:`spectrum`; ``inverse(name)`` maps the spectrum
+    (destroying it) into buffer ``name``. Unlike :class:`RealFFT`, no transform writes over an input
+    buffer: a field can stay in its buffer across iterations, and a zero padding stays zero. An
+    output may share an input's buffer (``outputs={"result": "field"}``) where that input is spent.
+    The buffers start zeroed; all plans are made at construction (FFTW_MEASURE scribbles on its
+    arrays while planning).
+    """
+
+    def __init__(self, shape: tuple[int, ...], threads: int, effort: str, inputs: tuple[str, ...],
+                 outputs: dict[str, str | None]):
+        _load_wisdom_once()
+        self.shape = tuple(shape)
+        spectral = self.shape[:-1] + (self.shape[-1] // 2 + 1,)
+        self.spectrum = pyfftw.empty_aligned(spectral, dtype="complex128")
+        axes = tuple(range(len(shape)))
+        self.buffers = {name: pyfftw.empty_aligned(shape, dtype="float64") for name in inputs}
+        for name, shared in outputs.items():
+            self.buffers[name] = self.buffers[shared] if shared else pyfftw.empty_aligned(shape, dtype="float64")
+        self._forward = {name: pyfftw.FFTW(self.buffers[name], self.spectrum, axes=axes, flags=(effort,),
+                                           threads=threads) for name in inputs}
+        self._inverse = {name: pyfftw.FFTW(self.spectrum, self.buffers[name], axes=axes, direction="FFTW_BACKWARD",
+                                           flags=(effort, "FFTW_DESTROY_INPUT"), threads=threads)
+                         for name in outputs}
+        for buffer in self.buffers.values():
+            buffer.fill(0.0)
+        if effort != "FFTW_ESTIMATE":
+            _save_wisdom()
+
+    def forward(self, name: str) -> np.ndarray:
+        self._forward[name].execute()
+        return self.spectrum
+
+    def inverse(self, name: str) -> np.ndarray:
+        self._inverse[name].execute()
+        return self.buffers[name]
+
+
+class _Pool:
+    """Lends a thread's cached :class:`SharedSpectrum`; a nested borrower gets a new one."""
+
+    def __init__(self, key, build):
+        self.key, self.build = key, build
+
+    def __enter__(self) -> SharedSpectrum:
+        free = _free_workspaces().setdefault(self.key, [])
+        self.workspace = free.pop() if free else self.build()
+        return self.workspace
+
+    def __exit__(self, *exc) -> None:
+        _free_workspaces()[self.key].append(self.workspace)
+
+
+def _free_workspaces() -> dict:
+    free = getattr(_local, "workspaces", None)
+    if free is None:
+        free = _local.workspaces = {}
+    return free
+
+
+def shared_spectrum(shape: tuple[int, ...], inputs: tuple[str, ...], outputs: dict[str, str | None]) -> _Pool:
+    """``with shared_spectrum(...) as workspace``: a :class:`SharedSpectrum` of this thread, kept for
+    the next solve of this shape and layout (buffers and plans are reused, their contents are not
+    reset); a solve nested inside another gets buffers of its own."""
+    key = (tuple(shape), _settings["threads"], _settings["effort"], tuple(inputs), tuple(outputs.items()))
+    return _Pool(key, lambda: SharedSpectrum(tuple(shape), _settings["threads"], _settings["effort"], inputs, outputs))
+
+
 def convolution_multiplier(transfer: np.ndarray, shape: tuple[int, ...]) -> np.ndarray:
     """Fold the inverse-FFT normalisation into a real Fourier multiplier."""
     return np.ascontiguousarray(transfer / float(np.prod(shape)), dtype="float64")

@@ -14,7 +14,7 @@ import numba
 import numpy as np
 
 from . import fft
-from ._numba import column_sums, jit, parallel_jit, parallel_sweeps, row_blocks
+from ._numba import column_sums, jit, parallel_jit, parallel_sweeps, row_blocks, serialised
 from .grid import Grid
 from .kernels import elastic
 
@@ -67,16 +67,146 @@ def _threaded_scale_spectrum(spectrum, multiplier):
         _scale_spectrum(spectrum[r], multiplier[r])
 
 
+@numba.njit(cache=True, nogil=True, boundscheck=False)
+def _affine_spectrum(spectrum, multiplier, offset, offset_scale):
+    """``spectrum = spectrum * multiplier - offset_scale * offset`` in place (2D views), one pass."""
+    for i in range(spectrum.shape[0]):
+        for j in range(spectrum.shape[1]):
+            spectrum[i, j] = spectrum[i, j] * multiplier[i, j] - offset_scale * offset[i, j]
+
+
+@jit
+def _scale_and_power_sum(spectrum, multiplier, even):
+    """:func:`_weighted_power_sum` of ``spectrum``, then ``spectrum *= multiplier``: one pass."""
+    last = spectrum.shape[1] - 1
+    total = 0.0
+    edges = 0.0
+    for i in range(spectrum.shape[0]):
+        s = spectrum[i, 0]  # the unmirrored columns, before the row is scaled
+        edges += (s.real * s.real + s.imag * s.imag) * multiplier[i, 0]
+        if even and last > 0:
+            s = spectrum[i, last]
+            edges += (s.real * s.real + s.imag * s.imag) * multiplier[i, last]
+        for j in range(spectrum.shape[1]):
+            s = spectrum[i, j]
+            m = multiplier[i, j]
+            total += (s.real * s.real + s.imag * s.imag) * m
+            spectrum[i, j] = s * m
+    return 2.0 * total - edges
+
+
+@parallel_jit
+def _threaded_scale_and_power_sum(spectrum, multiplier, even):
+    blocks, size = row_blocks(spectrum.shape[0], spectrum.shape[1])
+    part = np.empty((blocks, 1))
+    for b in numba.prange(blocks):
+        r = slice(b * size, min((b + 1) * size, spectrum.shape[0]))
+        part[b, 0] = _scale_and_power_sum(spectrum[r], multiplier[r], even)
+    return column_sums(part)[0]
+
+
+@numba.njit(cache=True, nogil=True, boundscheck=False, parallel=True)
+def _threaded_affine_spectrum(spectrum, multiplier, offset, offset_scale):
+    blocks, size = row_blocks(spectrum.shape[0], spectrum.shape[1])
+    for b in numba.prange(blocks):
+        r = slice(b * size, min((b + 1) * size, spectrum.shape[0]))
+        _affine_spectrum(spectrum[r], multiplier[r], offset[r], offset_scale)
+
+
+# what the dispatchers below call on threads: one launch at a time (contactlib._numba.LAUNCH_LOCK)
+_THREADED = {name: serialised(sweep) for name, sweep in (
+    ("weighted_power_sum", _threaded_weighted_power_sum), ("scale_spectrum", _threaded_scale_spectrum),
+    ("affine_spectrum", _threaded_affine_spectrum), ("scale_and_power_sum", _threaded_scale_and_power_sum))}
+
+
 def weighted_power_sum(spectrum: np.ndarray, multiplier: np.ndarray, even: bool) -> float:
     """:func:`_weighted_power_sum`, threaded like the solvers' sweeps (:mod:`contactlib._numba`)."""
     threaded = parallel_sweeps(spectrum.shape[0], 2 * spectrum.size)  # a half-spectrum: about the grid's size
-    return (_threaded_weighted_power_sum if threaded else _weighted_power_sum)(spectrum, multiplier, even)
+    return (_THREADED["weighted_power_sum"] if threaded else _weighted_power_sum)(spectrum, multiplier, even)
 
 
 def scale_spectrum(spectrum: np.ndarray, multiplier: np.ndarray) -> None:
     """:func:`_scale_spectrum`, threaded like the solvers' sweeps (the same bits either way)."""
     threaded = parallel_sweeps(spectrum.shape[0], 2 * spectrum.size)
-    (_threaded_scale_spectrum if threaded else _scale_spectrum)(spectrum, multiplier)
+    (_THREADED["scale_spectrum"] if threaded else _scale_spectrum)(spectrum, multiplier)
+
+
+def _rows(a: np.ndarray) -> np.ndarray:
+    """A 2D view (a profile's half-spectrum as one row) for the numba passes."""
+    return a.reshape(-1, a.shape[-1])
+
+
+class IterationTransforms:
+    """The transforms of one iterative solve on an operator's grid, on buffers of their own.
+
+    ``with operator.iteration_transforms(offset) as transforms:`` lends this thread's buffers (kept
+    for the next solve of the same grid). Three input fields live in them for the whole solve, as
+    views of the grid's block: :attr:`pressure`, :attr:`residual` and :attr:`direction`. The
+    transforms read them and never write over them, so a solver updates them in place and copies
+    nothing into FFT buffers:
+
+    * :meth:`displacement`: ``K pressure - offset_scale * offset`` (the offset's spectrum is kept, so
+      subtracting it costs no pass in real space);
+    * :meth:`precondition`: the approximate inverse of ``K`` (:attr:`Compliance.inverse_multiplier`)
+      applied to :attr:`residual`, and ``<residual, P residual>`` by Parseval on the way;
+    * :meth:`direction_energy`: ``<direction, K direction>`` by Parseval (a forward transform only).
+
+    The results are views valid until the next call of the same method. The buffers are not reset
+    between solves, except :attr:`direction`, which starts at zero.
+    """
+
+    def __init__(self, operator: Compliance, offset: np.ndarray | None = None):
+        self.operator = operator
+        outputs = {"displacement": None, "preconditioned": "residual" if operator.periodic else None}
+        self._pool = fft.shared_spectrum(operator.work_shape, ("pressure", "residual", "direction"), outputs)
+        self._offset_field = offset
+
+    def __enter__(self) -> IterationTransforms:
+        op = self.operator
+        ws = self._workspace = self._pool.__enter__()
+        if not op.periodic:  # the padding of the inputs must be zero; only their block is ever written
+            for name in ("pressure", "residual", "direction"):
+                ws.buffers[name].fill(0.0)
+        self.pressure, self.residual, self.direction = (ws.buffers[k][op._block]
+                                                        for k in ("pressure", "residual", "direction"))
+        self._multiplier, self._inverse = _rows(op.multiplier), _rows(op.inverse_multiplier)
+        self._even = op.work_shape[-1] % 2 == 0
+        self._offset = None
+        if self._offset_field is not None:
+            self.direction[...] = self._offset_field
+            self._offset = _rows(ws.forward("direction") / float(np.prod(op.work_shape)))
+        self.direction.fill(0.0)
+        return self
+
+    def __exit__(self, *exc) -> None:
+        self._offset = None
+        self._pool.__exit__(*exc)
+
+    def _threaded(self, spectrum: np.ndarray) -> bool:
+        return parallel_sweeps(spectrum.shape[0], 2 * spectrum.size)
+
+    def displacement(self, offset_scale: float = 0.0) -> np.ndarray:
+        """``K pressure - offset_scale * offset`` [length], a view of the block."""
+        spectrum = _rows(self._workspace.forward("pressure"))
+        threaded = self._threaded(spectrum)
+        if self._offset is None or offset_scale == 0.0:
+            (_THREADED["scale_spectrum"] if threaded else _scale_spectrum)(spectrum, self._multiplier)
+        else:
+            (_THREADED["affine_spectrum"] if threaded else _affine_spectrum)(spectrum, self._multiplier, self._offset,
+                                                                          offset_scale)
+        return self._workspace.inverse("displacement")[self.operator._block]
+
+    def precondition(self) -> tuple[np.ndarray, float]:
+        """``(P residual, <residual, P residual>)``: a view of the block, and the sum over the grid."""
+        spectrum = _rows(self._workspace.forward("residual"))
+        power = (_THREADED["scale_and_power_sum"] if self._threaded(spectrum) else _scale_and_power_sum)(
+            spectrum, self._inverse, self._even)
+        return self._workspace.inverse("preconditioned")[self.operator._block], float(power)
+
+    def direction_energy(self) -> float:
+        """``<direction, K direction>`` [length * pressure, summed over elements]."""
+        spectrum = _rows(self._workspace.forward("direction"))
+        return float(weighted_power_sum(spectrum, self._multiplier, self._even))
 
 
 @lru_cache(maxsize=8)
@@ -166,6 +296,11 @@ class Compliance:
         spectrum = plan.forward()
         scale_spectrum(spectrum.reshape(-1, spectrum.shape[-1]), multiplier.reshape(-1, multiplier.shape[-1]))
         return plan.inverse()[self._block]
+
+    def iteration_transforms(self, offset: np.ndarray | None = None) -> IterationTransforms:
+        """The transforms of an iterative solve, with their own buffers (:class:`IterationTransforms`);
+        ``offset`` [length] on the grid is subtracted from the displacement in Fourier space."""
+        return IterationTransforms(self, offset)
 
     def quadratic_form(self) -> float:
         """``<t, K t>`` [length * pressure, summed over elements] for the field ``t`` written to

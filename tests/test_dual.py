@@ -51,17 +51,19 @@ def test_dual_matches_the_primal_iteration(kernel, fraction):
 
 
 def test_dual_converges_where_the_primal_iteration_stalls():
-    """A 1D profile at 92 % contact: the primal iteration restarting on every re-entry (Polonsky &
-    Keer) stalls at residual 4e-3; the dual converges. Load control at the dual's mean pressure
-    (preconditioned primal, another formulation) finds the same pressure and the imposed
-    penetration, and so does the primal iteration with its default restart rule, in more iterations."""
+    """A 1D profile at 92 % contact. The primal iteration restarting on every re-entry (Polonsky &
+    Keer) is erratic there: 700-1700 iterations, or a stall at residual 4e-3 or 9e-5, depending on
+    round-off (heights scaled by 1 + 1e-13, or the gap formed in real or Fourier space, change which).
+    The dual converges in under 100. Load control at the dual's mean pressure (preconditioned primal,
+    another formulation) finds the same pressure and the imposed penetration, and so does the primal
+    iteration with its default restart rule, in more iterations."""
     h = _surface(4096, dim=1)
     op = Compliance(Grid(h.shape, (1.0,)), E_star=1.0)
     penetration = 0.999 * float(np.mean(h.max() - h))
     primal = solve_polonsky_keer(op, h, penetration=penetration, tol=1e-10, max_iter=3000, restart_fraction=0.0)
-    assert not primal.converged and primal.residual > 1e-3
     dual = solve_periodic_displacement(op, h, penetration=penetration, tol=1e-10)
-    assert dual.converged and dual.residual <= 1e-10
+    assert dual.converged and dual.residual <= 1e-10 and dual.iterations < 100
+    assert not primal.converged or primal.iterations > 5 * dual.iterations
     by_load = solve_polonsky_keer(op, h, mean_pressure=dual.mean_pressure, tol=1e-10)
     assert by_load.converged
     assert by_load.penetration == pytest.approx(penetration, rel=1e-7)

@@ -18,3 +18,35 @@ def test_quadratic_form_equals_real_space_product(shape, kernel, periodic):
     direct = float(np.sum(t * op(t)))
     op.load()[...] = t
     assert op.quadratic_form() == pytest.approx(direct, rel=1e-12)
+
+
+@pytest.mark.parametrize("periodic", [True, False])
+@pytest.mark.parametrize("shape", [(64, 64), (63, 50), (128,), (127,)])
+def test_iteration_transforms_match_the_plain_operator(shape, periodic):
+    """The solver's transforms on their own buffers: ``K p - s h`` with the heights' spectrum
+    subtracted in Fourier space, the preconditioner with its Parseval sum ``<r, P r>``, and
+    ``<t, K t>``, against the operator applied in real space."""
+    op = Compliance(Grid(shape, (1.0,) * len(shape)), E_star=1.3, periodic=periodic)
+    rng = np.random.default_rng(shape[-1] + periodic)
+    p, h, r, t = (rng.standard_normal(shape) for _ in range(4))
+    with op.iteration_transforms(offset=h) as tr:
+        assert not tr.direction.any()  # starts at zero
+        tr.pressure[...], tr.residual[...], tr.direction[...] = p, r, t
+        scale = np.abs(op(p)).max()
+        np.testing.assert_allclose(tr.displacement(0.7), op(p) - 0.7 * h, rtol=0, atol=1e-13 * scale)
+        np.testing.assert_array_equal(tr.pressure, p)  # inputs survive their transforms
+        preconditioned, power = tr.precondition()
+        padded = np.zeros(op.work_shape)
+        padded[op._block] = r
+        spectrum = np.fft.rfftn(padded) * op.inverse_multiplier
+        expected = np.fft.irfftn(spectrum, s=op.work_shape, axes=tuple(range(len(shape)))) * np.prod(op.work_shape)
+        np.testing.assert_allclose(preconditioned, expected[op._block], rtol=0, atol=1e-12 * np.abs(expected).max())
+        assert power == pytest.approx(float(np.sum(padded * expected)), rel=1e-11)
+        assert tr.direction_energy() == pytest.approx(float(np.sum(t * op(t))), rel=1e-12)
+        # a solve nested in this one gets buffers of its own
+        with op.iteration_transforms() as inner:
+            assert not np.shares_memory(inner.pressure, tr.pressure)
+            inner.pressure[...] = 1.0
+        np.testing.assert_array_equal(tr.pressure, p)
+    with op.iteration_transforms() as again:  # the same buffers, lent again
+        assert np.shares_memory(again.pressure, tr.pressure) or np.shares_memory(again.pressure, inner.pressure)

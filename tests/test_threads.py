@@ -9,7 +9,11 @@ import contactlib
 from contactlib import fft
 from contactlib._numba import PARALLEL_MIN_SIZE, parallel_sweeps
 from contactlib.operators import (
+    _affine_spectrum,
+    _scale_and_power_sum,
     _scale_spectrum,
+    _threaded_affine_spectrum,
+    _threaded_scale_and_power_sum,
     _threaded_scale_spectrum,
     _threaded_weighted_power_sum,
     _weighted_power_sum,
@@ -33,22 +37,22 @@ def two_threads():
 
 def _fields(shape, seed=3):
     rng = np.random.default_rng(seed)
-    u, g, t, z = (rng.standard_normal(shape) for _ in range(4))
-    hp = -np.abs(rng.standard_normal(shape))
+    w, t, z = (rng.standard_normal(shape) for _ in range(3))
     p = np.maximum(rng.standard_normal(shape), 0.0)  # about half the points in contact
-    return u, hp, p, g, t, z
+    return w, p, t, z
 
 
 def _run(sweeps, shape):
     """Every sweep once, in the loop's order: (their sums, the fields they wrote)."""
-    u, hp, p, g, t, z = _fields(shape)
-    masked, dest = np.empty(shape), np.empty(shape)
-    sums = [sweeps.gap_and_contact_mean(u, 1.3, hp, p, g),
-            sweeps.measure(g, p, 1.3, 0.1, masked, True),
-            sweeps.contact_sums(z, g, 0.1, p),
-            sweeps.conjugate_direction(z, 0.2, g, 0.1, p, 0.5, t, dest),
-            sweeps.step_project_reenter(p, 1.1, t, g, 0.1, 0.3, 0.01, dest)]
-    return np.array([x for s in sums for x in s]), (g, t, p, masked, dest)
+    w, p, t, z = _fields(shape)
+    contact = p > 0
+    masked = np.empty(shape)
+    sums = [(sweeps.contact_sum(w, contact),),
+            sweeps.measure(w, 1.3, 0.1, p, masked, True),
+            (sweeps.contact_sum(z, contact),),
+            sweeps.conjugate_direction(z, 1.0, 0.2, w, 1.3, 0.1, contact, 0.5, t),
+            sweeps.step_project_reenter(p, 1.1, t, w, 0.1, 0.3, 0.01, contact)]
+    return np.array([x for s in sums for x in s]), (t, p, masked, contact)
 
 
 @pytest.mark.parametrize("shape", [(96, 80), (300, 200), (3, 5000), (1, 513)])
@@ -65,9 +69,19 @@ def test_threaded_sweeps_are_deterministic_and_agree_with_serial(shape, two_thre
     np.testing.assert_allclose(threaded[0], serial[0], rtol=1e-12)
     for a, b in zip(threaded[1], serial[1]):
         np.testing.assert_array_equal(a, b)
-    u, hp, p, *_ = _fields(shape)  # the sums are what they say
-    assert serial[0][0] == np.count_nonzero(p > 0)
-    np.testing.assert_allclose(serial[0][1], np.sum(np.where(p > 0, 1.3 * u - hp, 0.0)), rtol=1e-12)
+    w, p, t, z = _fields(shape)  # the sums are what they say
+    np.testing.assert_allclose(serial[0][0], np.sum(np.where(p > 0, w, 0.0)), rtol=1e-12)
+    gap = 1.3 * w - 0.1
+    np.testing.assert_allclose(serial[0][1:5], [np.sum(1.3 * p * np.abs(gap)), np.sum(np.where(p > 0, 0, np.maximum(-gap, 0))),
+                                                np.sum(np.where(p > 0, gap**2, 0)), 1.3 * p.sum()], rtol=1e-12)
+    direction = np.where(p > 0, z - 0.2 + 0.5 * t, 0.0)
+    np.testing.assert_allclose(serial[0][6:8], [direction.sum(), np.sum(gap * direction)], rtol=1e-12)
+    new_p = np.maximum(1.1 * p - 0.3 * direction, 0.0)
+    reenter = (1.1 * p - 0.3 * direction <= 0) & (1.1 * w - 0.1 < 0)
+    new_p[reenter] = -0.01 * (1.1 * w - 0.1)[reenter]
+    np.testing.assert_allclose(serial[1][1], new_p, rtol=1e-12, atol=1e-15)  # re-entry: a difference
+    np.testing.assert_array_equal(serial[1][3], new_p > 0)
+    assert serial[0][9] == np.count_nonzero(reenter) and serial[0][11] == np.count_nonzero(new_p > 0)
 
 
 def test_threaded_spectrum_passes(two_threads):
@@ -84,6 +98,22 @@ def test_threaded_spectrum_passes(two_threads):
     _threaded_scale_spectrum(b, multiplier)
     np.testing.assert_array_equal(a, b)
     np.testing.assert_array_equal(a, spectrum * multiplier)  # numpy's bits: no fast-math in the multiply
+    offset = rng.standard_normal((512, 257)) + 1j * rng.standard_normal((512, 257))
+    a, b = spectrum.copy(), spectrum.copy()
+    _affine_spectrum(a, multiplier, offset, 0.7)
+    _threaded_affine_spectrum(b, multiplier, offset, 0.7)
+    np.testing.assert_array_equal(a, b)
+    np.testing.assert_array_equal(a, spectrum * multiplier - 0.7 * offset)
+    a, b = spectrum.copy(), spectrum.copy()
+    power = _scale_and_power_sum(a, multiplier, True)
+    numba.set_num_threads(1)
+    assert _threaded_scale_and_power_sum(b.copy(), multiplier, True) == _threaded_scale_and_power_sum(b, multiplier, True)
+    numba.set_num_threads(MAX_THREADS)
+    b = spectrum.copy()
+    assert _threaded_scale_and_power_sum(b, multiplier, True) == pytest.approx(power, rel=1e-13)
+    assert power == pytest.approx(_weighted_power_sum(spectrum, multiplier, True), rel=1e-13)
+    np.testing.assert_array_equal(a, b)
+    np.testing.assert_allclose(a, spectrum * multiplier, rtol=1e-15)
 
 
 def test_sweeps_thread_only_large_grids(two_threads):
@@ -113,3 +143,29 @@ def test_solve_on_two_threads_agrees_with_one():
     assert abs(int(two["iterations"]) - int(one["iterations"])) <= 1
     p1, p2 = one["pressure"].values, two["pressure"].values
     assert np.linalg.norm(p2 - p1) / np.linalg.norm(p1) < 1e-8
+
+
+def test_concurrent_threaded_solves_share_the_workqueue(two_threads):
+    """Two Python threads solving on threaded FFTs and sweeps at once (a dask worker with two threads):
+    numba's workqueue layer (chosen because OpenMP's spinning pools fought FFTW's) takes one launch
+    at a time, which the launch lock ensures; both answers equal a solve run alone."""
+    import os
+    import threading
+
+    heights = self_affine(256, hurst=0.8, rms_slope=0.1, q_roll=4, q_cutoff=32, seed=4)
+    kwargs = dict(E=1.0, nu=0.0, mean_pressure=0.02, tol=1e-10)
+    alone = contactlib.solve(heights, **kwargs)["pressure"].values
+    if "NUMBA_THREADING_LAYER" not in os.environ and numba.config.NUMBA_NUM_THREADS >= 2:
+        assert numba.threading_layer() == "workqueue"
+    answers = [None, None]
+
+    def run(k):
+        answers[k] = contactlib.solve(heights, **kwargs)["pressure"].values
+
+    workers = [threading.Thread(target=run, args=(k,)) for k in range(2)]
+    for worker in workers:
+        worker.start()
+    for worker in workers:
+        worker.join()
+    for answer in answers:
+        np.testing.assert_array_equal(answer, alone)

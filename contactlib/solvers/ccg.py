@@ -7,11 +7,14 @@ control fixes ``mean(p)`` and finds the rigid approach as the mean gap offset ov
 set; displacement control fixes the approach.
 
 Per iteration one convolution ``K p`` and, for the step length, ``<t, K t>`` from the forward
-transform of ``t`` alone (Parseval), written and read in place in the FFT buffers; everything else
-is four fused sweeps (:mod:`._fused`), with the gap kept unshifted and the approach subtracted
-inside them. The Fourier preconditioner adds one FFT pair and a sweep. Under load control the
-search direction is centred exactly on the contact set (so a step keeps the load), and the
-pressure is kept unnormalised and scaled to the load inside the sweeps.
+transform of ``t`` alone (Parseval). The pressure, the masked gap and the direction live in the
+input buffers of their transforms (:meth:`~contactlib.operators.Compliance.iteration_transforms`),
+which never write over them; the heights are subtracted in Fourier space, so ``K p - hp`` comes out
+of the inverse transform and no gap field is written. Everything else is fused sweeps
+(:mod:`._fused`) with the approach subtracted inside them, over a byte mask of the contact set. The
+Fourier preconditioner adds one FFT pair, a sum over the contact set, and gives ``<r, P r>`` by
+Parseval. Under load control the search direction is centred exactly on the contact set (so a step
+keeps the load), and the pressure is kept unnormalised and scaled to the load inside the sweeps.
 """
 
 from __future__ import annotations
@@ -102,7 +105,7 @@ def solve_polonsky_keer(
     # unknown, its mean fixed, preconditioned). The non-periodic compliance is definite, and the
     # preconditioner works under either control.
     precondition = precondition and (load_control or not operator.periodic)
-    hp = fz.as2d(heights - heights.max())  # <= 0; gap = u - hp - penetration
+    hp = fz.as2d(heights - heights.max())  # <= 0; gap = K p - hp - approach
     scale = height_scale(heights)
     n = heights.size
     self_compliance = operator.self_compliance()
@@ -116,44 +119,54 @@ def solve_polonsky_keer(
     if load_control:
         if mean_pressure == 0:
             return _zero_state(heights, penetration=0.0)
-        p = np.full(hp.shape, float(mean_pressure)) if initial_pressure is None else \
-            fz.as2d(np.maximum(initial_pressure, 0.0)).copy()
-        if p.sum() <= 0:
-            p[...] = mean_pressure
+        start = np.full(hp.shape, float(mean_pressure)) if initial_pressure is None else \
+            fz.as2d(np.maximum(initial_pressure, 0.0))
+        if start.sum() <= 0:
+            start = np.full(hp.shape, float(mean_pressure))
     else:
         interference = np.maximum(hp + penetration, 0.0)
         if not interference.any():
             return _zero_state(heights, penetration=float(penetration))
-        p = interference / self_compliance if initial_pressure is None else \
-            fz.as2d(np.maximum(initial_pressure, 0.0)).copy()
+        start = interference / self_compliance if initial_pressure is None else \
+            fz.as2d(np.maximum(initial_pressure, 0.0))
+    with operator.iteration_transforms(offset=hp.reshape(heights.shape)) as transforms:
+        # p, the residual and t stay in the transforms' input buffers; w = K p - hp / factor comes out
+        p, masked, t = fz.as2d(transforms.pressure), fz.as2d(transforms.residual), fz.as2d(transforms.direction)
+        p[...] = start
+        del start
+        state = _iterate(transforms, p, masked, t, hp, heights.shape, load_control, mean_pressure, penetration,
+                         precondition, reentry, self_compliance, scale, n, tol, max_iter, monitor, verify,
+                         verify_below, restart_fraction)
+    return state
+
+
+def _iterate(transforms, p, masked, t, hp, shape, load_control, mean_pressure, penetration, precondition,
+             reentry, self_compliance, scale, n, tol, max_iter, monitor, verify, verify_below, restart_fraction):
+    """The loop of :func:`solve_polonsky_keer` on its transforms' buffers; returns the answer, copied out."""
+    contact = p > 0.0
+    n_contact = int(np.count_nonzero(contact))
     # the pressure is ``factor * p``: load control rescales it to the load lazily, inside the sweeps
     factor = mean_pressure * n / p.sum() if load_control else 1.0
-
-    g = np.empty_like(p)
-    t = np.zeros_like(p)
     sweeps = fz.select(p.shape)
     unused = np.empty((1, 1))
     G_old, restart, t_kept = 1.0, True, 0.0
     residual, approach = np.inf, float(penetration or 0.0)
-    fz.as2d(operator.load())[...] = p
     best, best_it = np.inf, 0
     it = 0
     for it in range(max_iter + 1):
-        u = fz.as2d(operator.convolve())
-        n_contact, g_sum = sweeps.gap_and_contact_mean(u, factor, hp, p, g)
+        # the gap is factor * w - approach: the heights are subtracted in Fourier space
+        w = fz.as2d(transforms.displacement(1.0 / factor))
         if load_control:
-            approach = g_sum / n_contact
-        masked = fz.as2d(operator.load()) if precondition else unused
-        # g stays unshifted: the gap is g - approach, folded into the sums below
-        comp, pen, G, psum = sweeps.measure(g, p, factor, approach, masked, precondition)
+            approach = factor * sweeps.contact_sum(w, contact) / n_contact
+        comp, pen, G, psum = sweeps.measure(w, factor, approach, p, masked if precondition else unused, precondition)
         residual = (comp + psum * pen / n) / (psum * scale) if psum > 0 else pen / (n * scale)
         own = residual
         if verify is not None and residual <= (tol if verify_below is None else verify_below):
-            residual = max(residual, verify(_state(p * factor, g - approach, hp, heights.shape, approach, it,
+            residual = max(residual, verify(_state(p * factor, factor * w - approach, hp, shape, approach, it,
                                                    residual, tol)))
         if monitor is not None:
             monitor(it, residual, lambda f=factor, a=approach, i=it, r=residual:
-                    _state(p * f, g - a, hp, heights.shape, a, i, r, tol))
+                    _state(p * f, f * w - a, hp, shape, a, i, r, tol))
         if residual <= tol or it == max_iter:
             break
         if own < 0.99 * best:
@@ -165,32 +178,31 @@ def solve_polonsky_keer(
             # other restart rules): go on from here restarting on every re-entry, which is slower but
             # steady, and stop only if that stalls too
             restart_fraction, best_it, restart = 0.0, it, True
-        if precondition:  # z = P gap on the contact set; G = sum_c z gap
-            z = fz.as2d(operator.convolve(inverse=True))
-            z_sum, G = sweeps.contact_sums(z, g, approach, p)
-            z_offset = 0.0
-        else:  # z = gap, centred on the contact set under load control
-            z, z_sum, z_offset = g, 0.0, approach
+        if precondition:  # z = P gap on the contact set; G = <masked gap, P masked gap>
+            z, G = transforms.precondition()
+            z = fz.as2d(z)
+            z_sum = sweeps.contact_sum(z, contact) if load_control else 0.0
+            z_scale, z_offset = 1.0, 0.0
+        else:  # z = the gap, centred on the contact set under load control
+            z, z_sum, z_scale, z_offset = w, 0.0, factor, approach
         beta = 0.0 if restart or G_old <= 0 else G / G_old
         G_old = G
         # under load control t is centred on the contact set, so a step keeps the load; t_kept is
         # the previous direction's sum over the current contact set
         shift = z_offset + ((z_sum + beta * t_kept) / n_contact if load_control else 0.0)
-        gt = sweeps.conjugate_direction(z, shift, g, approach, p, beta, t, fz.as2d(operator.load()))[1]
-        tKt = operator.quadratic_form()  # <t, K t> by Parseval: no inverse transform
+        gt = sweeps.conjugate_direction(z, z_scale, shift, w, factor, approach, contact, beta, t)[1]
+        tKt = transforms.direction_energy()  # <t, K t> by Parseval: no inverse transform
         tau = gt / tKt if tKt > 0 else 1.0 / (self_compliance * reentry)  # no direction: re-entry only
-        psum, n_overlap, t_kept = sweeps.step_project_reenter(p, factor, t, g, approach, tau, tau * reentry,
-                                                              fz.as2d(operator.load()))
+        psum, n_overlap, t_kept, n_contact = sweeps.step_project_reenter(p, factor, t, w, approach, tau,
+                                                                         tau * reentry, contact)
         restart = n_overlap > restart_fraction * n_contact
         if load_control:
             if psum <= 0:  # lost every point: restart from the highest point
                 p[...] = np.where(hp == 0.0, 1.0, 0.0)
-                psum, restart = p.sum(), True
-                fz.as2d(operator.load())[...] = p
+                np.greater(p, 0.0, out=contact)
+                psum, n_contact, restart = p.sum(), int(np.count_nonzero(contact)), True
             factor = mean_pressure * n / psum
-    p *= factor
-    g -= approach
-    return _state(p, g, hp, heights.shape, approach, it, residual, tol)
+    return _state(p * factor, factor * w - approach, hp, shape, approach, it, residual, tol)
 
 
 def _state(p, gap, hp, shape, approach, it, residual, tol) -> ContactState:
