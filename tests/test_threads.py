@@ -169,3 +169,28 @@ def test_concurrent_threaded_solves_share_the_workqueue(two_threads):
         worker.join()
     for answer in answers:
         np.testing.assert_array_equal(answer, alone)
+
+
+def test_fftw_openmp_team_follows_the_thread_setting():
+    """pyFFTW's FFTW runs its threaded transforms on an OpenMP team sized by OMP_NUM_THREADS, not by
+    the plan: with OMP_NUM_THREADS=1 a 2-thread plan ran on one thread, slower than a serial plan.
+    contactlib sizes the team of the thread that runs its plans to the thread setting."""
+    import os
+    import subprocess
+    import sys
+
+    script = (
+        "import ctypes, pathlib\n"
+        "from contactlib import fft\n"
+        "fft.set_fft_options(threads=2)\n"
+        "fft.get_fft((64, 64))\n"
+        "maps = pathlib.Path('/proc/self/maps').read_text().splitlines()\n"
+        "paths = sorted({l.split()[-1] for l in maps if '/lib' in l and ('gomp' in l or 'libomp' in l)})\n"
+        "print(len(paths), [ctypes.CDLL(p).omp_get_max_threads() for p in paths])\n"
+    )
+    env = dict(os.environ, OMP_NUM_THREADS="1")
+    out = subprocess.run([sys.executable, "-c", script], env=env, capture_output=True, text=True, check=True).stdout
+    count, teams = out.split(" ", 1)
+    if int(count) == 0:
+        pytest.skip("no OpenMP runtime loaded: this FFTW build does not thread with OpenMP")
+    assert eval(teams) == [2] * int(count)

@@ -64,8 +64,8 @@ def solve_polonsky_keer(
     Parameters
     ----------
     operator : Compliance
-        Linear symmetric compliance with ``load() -> input view`` and ``convolve() -> output view``
-        (see :class:`contactlib.operators.Compliance`).
+        Linear symmetric compliance whose ``iteration_transforms(offset)`` gives the loop's transforms
+        on buffers of their own (see :class:`contactlib.operators.IterationTransforms`).
     heights : ndarray
         Rigid surface heights [length]; higher points touch first.
     mean_pressure, penetration : float
