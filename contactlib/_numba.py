@@ -44,9 +44,12 @@ FASTMATH = {"reassoc", "contract", "nsz"}
 jit = numba.njit(cache=True, nogil=True, fastmath=FASTMATH, boundscheck=False)
 parallel_jit = numba.njit(cache=True, nogil=True, fastmath=FASTMATH, boundscheck=False, parallel=True)
 
-PARALLEL_MIN_SIZE = 1 << 16
-"""Smallest grid (points) swept on several threads: below it, starting the threads costs more than
-the sweep (a 256^2 sweep streams a few MB, tens of microseconds)."""
+PARALLEL_MIN_SIZE = 1 << 23
+"""Smallest grid (points) swept on several threads. A workqueue launch wakes sleeping threads, which
+costs about a quarter of a millisecond on this 2-vCPU VM, and FFTW's OpenMP threads are still
+spinning on the other core when a sweep starts. Whole 1-thread-sweep against 2-thread-sweep solves,
+FFTW on 2 threads (ms per iteration): 256^2 1.08 / 2.64, 512^2 4.5 / 5.6, 1024^2 20.2 / 22.7,
+2048^2 118.6 / 126.7, 4096^2 671 / 623. So the sweeps thread from 4096^2 (8.4 million points) up."""
 
 BLOCK_SIZE = 1 << 13
 """Points per row block of a threaded sweep (whole rows, at least one): enough that a block's

@@ -7,6 +7,7 @@ import pytest
 
 import contactlib
 from contactlib import fft
+from contactlib import _numba
 from contactlib._numba import PARALLEL_MIN_SIZE, parallel_sweeps
 from contactlib.operators import (
     _affine_spectrum,
@@ -33,6 +34,12 @@ def two_threads():
     yield
     fft.set_fft_options(threads=before)
     numba.set_num_threads(1)
+
+
+@pytest.fixture
+def small_grids_threaded(monkeypatch):
+    """Threaded sweeps from 256^2 up, so that small solves run them (by default only 4096^2 grids do)."""
+    monkeypatch.setattr(_numba, "PARALLEL_MIN_SIZE", 1 << 16)
 
 
 def _fields(shape, seed=3):
@@ -118,16 +125,17 @@ def test_threaded_spectrum_passes(two_threads):
 
 def test_sweeps_thread_only_large_grids(two_threads):
     threaded = numba.config.NUMBA_NUM_THREADS >= 2  # numba counts the CPUs this process may use
-    assert parallel_sweeps(256, 256 * 256) == threaded
-    assert fz.select((256, 256)) is (fz.THREADED if threaded else fz.SERIAL)
+    assert parallel_sweeps(4096, 4096 * 4096) == threaded
+    assert fz.select((4096, 4096)) is (fz.THREADED if threaded else fz.SERIAL)
     assert not parallel_sweeps(1, PARALLEL_MIN_SIZE * 4)  # a profile: one row
-    assert not parallel_sweeps(128, 128 * 128)  # too small to pay for the threads
+    assert not parallel_sweeps(2048, 2048 * 2048)  # too small to pay for the threads
+    assert fz.select((2048, 2048)) is fz.SERIAL
     fft.set_fft_options(threads=1)
-    assert not parallel_sweeps(1024, 1024 * 1024)
-    assert fz.select((1024, 1024)) is fz.SERIAL
+    assert not parallel_sweeps(4096, 4096 * 4096)
+    assert fz.select((4096, 4096)) is fz.SERIAL
 
 
-def test_solve_on_two_threads_agrees_with_one():
+def test_solve_on_two_threads_agrees_with_one(small_grids_threaded):
     """A 256^2 rough solve with threaded FFTs and sweeps: same iterations, same answer to round-off
     (FFTW's threaded plans and the threaded sums add in another order, so not bit for bit)."""
     heights = self_affine(256, hurst=0.8, rms_slope=0.1, q_roll=4, q_cutoff=32, seed=2)
@@ -145,7 +153,7 @@ def test_solve_on_two_threads_agrees_with_one():
     assert np.linalg.norm(p2 - p1) / np.linalg.norm(p1) < 1e-8
 
 
-def test_concurrent_threaded_solves_share_the_workqueue(two_threads):
+def test_concurrent_threaded_solves_share_the_workqueue(two_threads, small_grids_threaded):
     """Two Python threads solving on threaded FFTs and sweeps at once (a dask worker with two threads):
     numba's workqueue layer (chosen because OpenMP's spinning pools fought FFTW's) takes one launch
     at a time, which the launch lock ensures; both answers equal a solve run alone."""
