@@ -36,9 +36,9 @@ def wisdom_path() -> Path:
 def set_fft_options(*, threads: int | None = None, effort: str | None = None) -> None:
     """Set the threads of a solve and the FFTW planner effort (``FFTW_ESTIMATE``/``MEASURE``/``PATIENT``).
 
-    ``threads`` is FFTW's thread count per transform; above 1 the solvers' element-wise sweeps run
-    on as many threads too (on grids of 65536 points or more), equal to the serial sweeps to
-    round-off (:mod:`contactlib._numba`)."""
+    ``threads`` is FFTW's thread count per transform (its OpenMP team is sized to match, whatever
+    ``OMP_NUM_THREADS`` says); above 1 the solvers' element-wise sweeps run on as many threads too on
+    grids of 4096^2 points or more, equal to the serial sweeps to round-off (:mod:`contactlib._numba`)."""
     if threads is not None:
         if int(threads) < 1:
             raise ValueError(f"threads must be >= 1, got {threads}")
