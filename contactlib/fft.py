@@ -183,8 +183,8 @@ class SharedSpectrum:
     (destroying it) into buffer ``name``. Unlike :class:`RealFFT`, no transform writes over an input
     buffer: a field can stay in its buffer across iterations, and a zero padding stays zero. An
     output may share an input's buffer (``outputs={"result": "field"}``) where that input is spent.
-    The buffers start zeroed; all plans are made at construction (FFTW_MEASURE scribbles on its
-    arrays while planning).
+    The buffers start zeroed (but for one replaced by :meth:`detach`); all plans are made at
+    construction (FFTW_MEASURE scribbles on its arrays while planning).
     """
 
     def __init__(self, shape: tuple[int, ...], threads: int, effort: str, inputs: tuple[str, ...],
@@ -214,6 +214,20 @@ class SharedSpectrum:
     def inverse(self, name: str) -> np.ndarray:
         self._inverse[name].execute()
         return self.buffers[name]
+
+    def detach(self, name: str) -> np.ndarray:
+        """Hand buffer ``name`` (and the names sharing it) over to the caller, and rebind its plans to a
+        new, uninitialised buffer: a solve returns its fields without copying them, and the pool keeps
+        its plans."""
+        old = self.buffers[name]
+        new = pyfftw.empty_aligned(self.shape, dtype="float64")
+        for key in [key for key, buffer in self.buffers.items() if buffer is old]:
+            self.buffers[key] = new
+            if key in self._forward:
+                self._forward[key].update_arrays(new, self.spectrum)
+            if key in self._inverse:
+                self._inverse[key].update_arrays(self.spectrum, new)
+        return old
 
 
 class _Pool:

@@ -151,8 +151,9 @@ class IterationTransforms:
       applied to :attr:`residual`, and ``<residual, P residual>`` by Parseval on the way;
     * :meth:`direction_energy`: ``<direction, K direction>`` by Parseval (a forward transform only).
 
-    The results are views valid until the next call of the same method. The buffers are not reset
-    between solves, except :attr:`direction`, which starts at zero.
+    The results are views valid until the next call of the same method; :meth:`take` hands a field
+    over at the end. The buffers are not reset between solves, except :attr:`direction`, which starts
+    at zero (and, zero-padded, the inputs' padding).
     """
 
     def __init__(self, operator: Compliance, offset: np.ndarray | None = None):
@@ -181,6 +182,16 @@ class IterationTransforms:
     def __exit__(self, *exc) -> None:
         self._offset = None
         self._pool.__exit__(*exc)
+
+    def take(self, name: str) -> np.ndarray:
+        """The field in buffer ``name`` (``"pressure"``, ``"displacement"``, ``"residual"``...) as an array
+        of the caller's, on the grid: periodic, the buffer itself, handed over without a copy (the pool
+        gets a new one); zero-padded, a copy of the block. The offset's spectrum is dropped first: a
+        solve takes its fields at the end, and its memory peaks there."""
+        self._offset = None
+        if self.operator.periodic:
+            return self._workspace.detach(name)
+        return self._workspace.buffers[name][self.operator._block].copy()
 
     def _threaded(self, spectrum: np.ndarray) -> bool:
         return parallel_sweeps(spectrum.shape[0], 2 * spectrum.size)

@@ -119,10 +119,9 @@ def solve_polonsky_keer(
     if load_control:
         if mean_pressure == 0:
             return _zero_state(heights, penetration=0.0)
-        start = np.full(hp.shape, float(mean_pressure)) if initial_pressure is None else \
-            fz.as2d(np.maximum(initial_pressure, 0.0))
-        if start.sum() <= 0:
-            start = np.full(hp.shape, float(mean_pressure))
+        start = float(mean_pressure) if initial_pressure is None else fz.as2d(np.maximum(initial_pressure, 0.0))
+        if np.sum(start) <= 0:
+            start = float(mean_pressure)  # a uniform start: no grid-sized temporary
     else:
         interference = np.maximum(hp + penetration, 0.0)
         if not interference.any():
@@ -202,13 +201,22 @@ def _iterate(transforms, p, masked, t, hp, shape, load_control, mean_pressure, p
                 np.greater(p, 0.0, out=contact)
                 psum, n_contact, restart = p.sum(), int(np.count_nonzero(contact)), True
             factor = mean_pressure * n / psum
-    return _state(p * factor, factor * w - approach, hp, shape, approach, it, residual, tol)
+    # the answer in the buffers themselves (periodic): no grid-sized copy at the memory peak
+    pressure = fz.as2d(transforms.take("pressure"))
+    pressure *= factor
+    gap = fz.as2d(transforms.take("displacement"))
+    gap *= factor
+    gap -= approach
+    return _state(pressure, gap, hp, shape, approach, it, residual, tol, fz.as2d(transforms.take("residual")))
 
 
-def _state(p, gap, hp, shape, approach, it, residual, tol) -> ContactState:
-    """The iterate as a ContactState: ``p`` scaled to the load, ``gap`` shifted by the approach."""
+def _state(p, gap, hp, shape, approach, it, residual, tol, out=None) -> ContactState:
+    """The iterate as a ContactState: ``p`` scaled to the load, ``gap`` shifted by the approach; the
+    displacement is written to ``out`` if given."""
     # the gap was formed from K p of this very p: u = gap + hp + approach, without another convolution
-    displacement = (gap + hp + approach).reshape(shape)
+    displacement = np.add(gap, hp, out=out)
+    displacement += approach
+    displacement = displacement.reshape(shape)
     return ContactState(
         pressure=p.reshape(shape), gap=gap.reshape(shape), displacement=displacement,
         penetration=float(approach), mean_pressure=float(p.mean()), iterations=it, residual=float(residual),
