@@ -52,8 +52,8 @@ def test_dual_matches_the_primal_iteration(kernel, fraction):
 
 def test_dual_converges_where_the_primal_iteration_stalls():
     """A 1D profile at 92 % contact. The primal iteration restarting on every re-entry (Polonsky &
-    Keer) is erratic there: 700-1700 iterations, or a stall at residual 4e-3 or 9e-5, depending on
-    round-off (heights scaled by 1 + 1e-13, or the gap formed in real or Fourier space, change which).
+    Keer) is erratic there: 700-1700 iterations, or unconverged at residual 4e-3 (a stall) or 9e-5
+    (after 3000 iterations), depending on round-off (heights scaled by 1 + 1e-13, or the gap formed in real or Fourier space, change which).
     The dual converges in under 100. Load control at the dual's mean pressure (preconditioned primal,
     another formulation) finds the same pressure and the imposed penetration, and so does the primal
     iteration with its default restart rule, in more iterations."""
