@@ -122,9 +122,8 @@ def measure_threads(threads: int, heights, op, mean_pressure, contact, mid, args
         parts["inverse FFT"] = (median_time(lambda: ws.inverse("displacement"), r, fresh_spectrum), 0)
         rows = ws.spectrum.reshape(-1, ws.spectrum.shape[-1])
         multiplier, inverse = (m.reshape(-1, m.shape[-1]) for m in (op.multiplier, op.inverse_multiplier))
-        threaded = sweeps is fz.THREADED
-        affine = op_module._THREADED["affine_spectrum"] if threaded else op_module._affine_spectrum
-        scale_power = op_module._THREADED["scale_and_power_sum"] if threaded else op_module._scale_and_power_sum
+        affine = op_module._spectrum_pass(op_module._affine_spectrum, rows)
+        scale_power = op_module._spectrum_pass(op_module._scale_and_power_sum, rows)
         even = heights.shape[-1] % 2 == 0
         parts["K p - hp (multiply, subtract)"] = (
             median_time(lambda: affine(rows, multiplier, tr._offset, 1.0), r, fresh_spectrum), 3.5)

@@ -113,22 +113,26 @@ def _threaded_affine_spectrum(spectrum, multiplier, offset, offset_scale):
         _affine_spectrum(spectrum[r], multiplier[r], offset[r], offset_scale)
 
 
-# what the dispatchers below call on threads: one launch at a time (contactlib._numba.LAUNCH_LOCK)
-_THREADED = {name: serialised(sweep) for name, sweep in (
-    ("weighted_power_sum", _threaded_weighted_power_sum), ("scale_spectrum", _threaded_scale_spectrum),
-    ("affine_spectrum", _threaded_affine_spectrum), ("scale_and_power_sum", _threaded_scale_and_power_sum))}
+# each pass over a half-spectrum, serial and threaded (one launch at a time: contactlib._numba.LAUNCH_LOCK)
+_SPECTRUM_PASSES = {serial: serialised(threaded) for serial, threaded in (
+    (_weighted_power_sum, _threaded_weighted_power_sum), (_scale_spectrum, _threaded_scale_spectrum),
+    (_affine_spectrum, _threaded_affine_spectrum), (_scale_and_power_sum, _threaded_scale_and_power_sum))}
+
+
+def _spectrum_pass(serial, spectrum: np.ndarray):
+    """``serial``, or its threaded version where the solvers' sweeps would thread (:mod:`contactlib._numba`)."""
+    threaded = parallel_sweeps(spectrum.shape[0], 2 * spectrum.size)  # a half-spectrum: about the grid's size
+    return _SPECTRUM_PASSES[serial] if threaded else serial
 
 
 def weighted_power_sum(spectrum: np.ndarray, multiplier: np.ndarray, even: bool) -> float:
     """:func:`_weighted_power_sum`, threaded like the solvers' sweeps (:mod:`contactlib._numba`)."""
-    threaded = parallel_sweeps(spectrum.shape[0], 2 * spectrum.size)  # a half-spectrum: about the grid's size
-    return (_THREADED["weighted_power_sum"] if threaded else _weighted_power_sum)(spectrum, multiplier, even)
+    return _spectrum_pass(_weighted_power_sum, spectrum)(spectrum, multiplier, even)
 
 
 def scale_spectrum(spectrum: np.ndarray, multiplier: np.ndarray) -> None:
     """:func:`_scale_spectrum`, threaded like the solvers' sweeps (the same bits either way)."""
-    threaded = parallel_sweeps(spectrum.shape[0], 2 * spectrum.size)
-    (_THREADED["scale_spectrum"] if threaded else _scale_spectrum)(spectrum, multiplier)
+    _spectrum_pass(_scale_spectrum, spectrum)(spectrum, multiplier)
 
 
 def _rows(a: np.ndarray) -> np.ndarray:
@@ -193,25 +197,19 @@ class IterationTransforms:
             return self._workspace.detach(name)
         return self._workspace.buffers[name][self.operator._block].copy()
 
-    def _threaded(self, spectrum: np.ndarray) -> bool:
-        return parallel_sweeps(spectrum.shape[0], 2 * spectrum.size)
-
     def displacement(self, offset_scale: float = 0.0) -> np.ndarray:
         """``K pressure - offset_scale * offset`` [length], a view of the block."""
         spectrum = _rows(self._workspace.forward("pressure"))
-        threaded = self._threaded(spectrum)
         if self._offset is None or offset_scale == 0.0:
-            (_THREADED["scale_spectrum"] if threaded else _scale_spectrum)(spectrum, self._multiplier)
+            _spectrum_pass(_scale_spectrum, spectrum)(spectrum, self._multiplier)
         else:
-            (_THREADED["affine_spectrum"] if threaded else _affine_spectrum)(spectrum, self._multiplier, self._offset,
-                                                                          offset_scale)
+            _spectrum_pass(_affine_spectrum, spectrum)(spectrum, self._multiplier, self._offset, offset_scale)
         return self._workspace.inverse("displacement")[self.operator._block]
 
     def precondition(self) -> tuple[np.ndarray, float]:
         """``(P residual, <residual, P residual>)``: a view of the block, and the sum over the grid."""
         spectrum = _rows(self._workspace.forward("residual"))
-        power = (_THREADED["scale_and_power_sum"] if self._threaded(spectrum) else _scale_and_power_sum)(
-            spectrum, self._inverse, self._even)
+        power = _spectrum_pass(_scale_and_power_sum, spectrum)(spectrum, self._inverse, self._even)
         return self._workspace.inverse("preconditioned")[self.operator._block], float(power)
 
     def direction_energy(self) -> float:
