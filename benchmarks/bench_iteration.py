@@ -42,8 +42,8 @@ import numpy as np
 
 import contactlib
 from contactlib import fft as cfft
-from contactlib.grid import Grid
 from contactlib import operators as op_module
+from contactlib.grid import Grid
 from contactlib.operators import Compliance, weighted_power_sum
 from contactlib.solvers import _fused as fz
 from contactlib.solvers import solve_polonsky_keer
