@@ -58,20 +58,22 @@ def threads() -> int:
     return _settings["threads"]
 
 
-def _openmp_set_num_threads() -> list:
-    """``omp_set_num_threads`` of each OpenMP runtime loaded in this process (Linux; else none)."""
-    setters = []
+def _openmp_runtimes() -> list[ctypes.CDLL]:
+    """The OpenMP runtimes (gomp, libomp) loaded in this process, with their ``omp_*`` calls (Linux;
+    elsewhere none)."""
     try:
         maps = Path("/proc/self/maps").read_text().splitlines()
     except OSError:
-        return setters
-    paths = sorted({line.split()[-1] for line in maps if "/lib" in line and ("gomp" in line or "libomp" in line)})
-    for path in paths:
+        return []
+    runtimes = []
+    for path in sorted({line.split()[-1] for line in maps if "/lib" in line and ("gomp" in line or "libomp" in line)}):
         try:
-            setters.append(ctypes.CDLL(path).omp_set_num_threads)
+            runtime = ctypes.CDLL(path)
+            runtime.omp_set_num_threads  # a library that only mentions OpenMP in its name has none
         except (OSError, AttributeError):
-            pass
-    return setters
+            continue
+        runtimes.append(runtime)
+    return runtimes
 
 
 def _match_openmp_threads(threads: int) -> None:
@@ -84,15 +86,15 @@ def _match_openmp_threads(threads: int) -> None:
     plans run."""
     if threads < 2 or getattr(_local, "openmp_threads", None) == threads:
         return
-    global _openmp_setters
-    if _openmp_setters is None:
-        _openmp_setters = _openmp_set_num_threads()
-    for setter in _openmp_setters:
-        setter(threads)
+    global _openmp
+    if _openmp is None:
+        _openmp = _openmp_runtimes()
+    for runtime in _openmp:
+        runtime.omp_set_num_threads(threads)
     _local.openmp_threads = threads
 
 
-_openmp_setters = None
+_openmp = None
 
 
 def export_wisdom() -> tuple[bytes, ...]:
