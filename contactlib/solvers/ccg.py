@@ -128,86 +128,78 @@ def solve_polonsky_keer(
             return _zero_state(heights, penetration=float(penetration))
         start = interference / self_compliance if initial_pressure is None else \
             fz.as2d(np.maximum(initial_pressure, 0.0))
-    with operator.iteration_transforms(offset=hp.reshape(heights.shape)) as transforms:
+    shape = heights.shape
+    with operator.iteration_transforms(offset=hp.reshape(shape)) as transforms:
         # p, the residual and t stay in the transforms' input buffers; w = K p - hp / factor comes out
         p, masked, t = fz.as2d(transforms.pressure), fz.as2d(transforms.residual), fz.as2d(transforms.direction)
         p[...] = start
         del start
-        state = _iterate(transforms, p, masked, t, hp, heights.shape, load_control, mean_pressure, penetration,
-                         precondition, reentry, self_compliance, scale, n, tol, max_iter, monitor, verify,
-                         verify_below, restart_fraction)
-    return state
-
-
-def _iterate(transforms, p, masked, t, hp, shape, load_control, mean_pressure, penetration, precondition,
-             reentry, self_compliance, scale, n, tol, max_iter, monitor, verify, verify_below, restart_fraction):
-    """The loop of :func:`solve_polonsky_keer` on its transforms' buffers; returns the answer, copied out."""
-    contact = p > 0.0
-    n_contact = int(np.count_nonzero(contact))
-    # the pressure is ``factor * p``: load control rescales it to the load lazily, inside the sweeps
-    factor = mean_pressure * n / p.sum() if load_control else 1.0
-    sweeps = fz.select(p.shape)
-    unused = np.empty((1, 1))
-    G_old, restart, t_kept = 1.0, True, 0.0
-    residual, approach = np.inf, float(penetration or 0.0)
-    best, best_it = np.inf, 0
-    it = 0
-    for it in range(max_iter + 1):
-        # the gap is factor * w - approach: the heights are subtracted in Fourier space
-        w = fz.as2d(transforms.displacement(1.0 / factor))
-        if load_control:
-            approach = factor * sweeps.contact_sum(w, contact) / n_contact
-        comp, pen, G, psum = sweeps.measure(w, factor, approach, p, masked if precondition else unused, precondition)
-        residual = (comp + psum * pen / n) / (psum * scale) if psum > 0 else pen / (n * scale)
-        own = residual
-        if verify is not None and residual <= (tol if verify_below is None else verify_below):
-            residual = max(residual, verify(_state(p * factor, factor * w - approach, hp, shape, approach, it,
-                                                   residual, tol)))
-        if monitor is not None:
-            monitor(it, residual, lambda f=factor, a=approach, i=it, r=residual:
-                    _state(p * f, f * w - a, hp, shape, a, i, r, tol))
-        if residual <= tol or it == max_iter:
-            break
-        if own < 0.99 * best:
-            best, best_it = own, it
-        elif it - best_it >= STALL_ITERATIONS:
-            if restart_fraction == 0:
+        contact = p > 0.0
+        n_contact = int(np.count_nonzero(contact))
+        # the pressure is ``factor * p``: load control rescales it to the load lazily, inside the sweeps
+        factor = mean_pressure * n / p.sum() if load_control else 1.0
+        sweeps = fz.select(p.shape)
+        unused = np.empty((1, 1))
+        G_old, restart, t_kept = 1.0, True, 0.0
+        residual, approach = np.inf, float(penetration or 0.0)
+        best, best_it = np.inf, 0
+        it = 0
+        for it in range(max_iter + 1):
+            # the gap is factor * w - approach: the heights are subtracted in Fourier space
+            w = fz.as2d(transforms.displacement(1.0 / factor))
+            if load_control:
+                approach = factor * sweeps.contact_sum(w, contact) / n_contact
+            comp, pen, G, psum = sweeps.measure(w, factor, approach, p, masked if precondition else unused, precondition)
+            residual = (comp + psum * pen / n) / (psum * scale) if psum > 0 else pen / (n * scale)
+            own = residual
+            if verify is not None and residual <= (tol if verify_below is None else verify_below):
+                residual = max(residual, verify(_state(p * factor, factor * w - approach, hp, shape, approach, it,
+                                                       residual, tol)))
+            if monitor is not None:
+                monitor(it, residual, lambda f=factor, a=approach, i=it, r=residual, u=w:
+                        _state(p * f, f * u - a, hp, shape, a, i, r, tol))
+            if residual <= tol or it == max_iter:
                 break
-            # kept directions may stall a hard scene (a 65536-point profile at 20 % contact, seen with
-            # other restart rules): go on from here restarting on every re-entry, which is slower but
-            # steady, and stop only if that stalls too
-            restart_fraction, best_it, restart = 0.0, it, True
-        if precondition:  # z = P gap on the contact set; G = <masked gap, P masked gap>
-            z, G = transforms.precondition()
-            z = fz.as2d(z)
-            z_sum = sweeps.contact_sum(z, contact) if load_control else 0.0
-            z_scale, z_offset = 1.0, 0.0
-        else:  # z = the gap, centred on the contact set under load control
-            z, z_sum, z_scale, z_offset = w, 0.0, factor, approach
-        beta = 0.0 if restart or G_old <= 0 else G / G_old
-        G_old = G
-        # under load control t is centred on the contact set, so a step keeps the load; t_kept is
-        # the previous direction's sum over the current contact set
-        shift = z_offset + ((z_sum + beta * t_kept) / n_contact if load_control else 0.0)
-        gt = sweeps.conjugate_direction(z, z_scale, shift, w, factor, approach, contact, beta, t)[1]
-        tKt = transforms.direction_energy()  # <t, K t> by Parseval: no inverse transform
-        tau = gt / tKt if tKt > 0 else 1.0 / (self_compliance * reentry)  # no direction: re-entry only
-        psum, n_overlap, t_kept, n_contact = sweeps.step_project_reenter(p, factor, t, w, approach, tau,
-                                                                         tau * reentry, contact)
-        restart = n_overlap > restart_fraction * n_contact
-        if load_control:
-            if psum <= 0:  # lost every point: restart from the highest point
-                p[...] = np.where(hp == 0.0, 1.0, 0.0)
-                np.greater(p, 0.0, out=contact)
-                psum, n_contact, restart = p.sum(), int(np.count_nonzero(contact)), True
-            factor = mean_pressure * n / psum
-    # the answer in the buffers themselves (periodic): no grid-sized copy at the memory peak
-    pressure = fz.as2d(transforms.take("pressure"))
-    pressure *= factor
-    gap = fz.as2d(transforms.take("displacement"))
-    gap *= factor
-    gap -= approach
-    return _state(pressure, gap, hp, shape, approach, it, residual, tol, fz.as2d(transforms.take("residual")))
+            if own < 0.99 * best:
+                best, best_it = own, it
+            elif it - best_it >= STALL_ITERATIONS:
+                if restart_fraction == 0:
+                    break
+                # kept directions may stall a hard scene (a 65536-point profile at 20 % contact, seen with
+                # other restart rules): go on from here restarting on every re-entry, which is slower but
+                # steady, and stop only if that stalls too
+                restart_fraction, best_it, restart = 0.0, it, True
+            if precondition:  # z = P gap on the contact set; G = <masked gap, P masked gap>
+                z, G = transforms.precondition()
+                z = fz.as2d(z)
+                z_sum = sweeps.contact_sum(z, contact) if load_control else 0.0
+                z_scale, z_offset = 1.0, 0.0
+            else:  # z = the gap, centred on the contact set under load control
+                z, z_sum, z_scale, z_offset = w, 0.0, factor, approach
+            beta = 0.0 if restart or G_old <= 0 else G / G_old
+            G_old = G
+            # under load control t is centred on the contact set, so a step keeps the load; t_kept is
+            # the previous direction's sum over the current contact set
+            shift = z_offset + ((z_sum + beta * t_kept) / n_contact if load_control else 0.0)
+            gt = sweeps.conjugate_direction(z, z_scale, shift, w, factor, approach, contact, beta, t)[1]
+            tKt = transforms.direction_energy()  # <t, K t> by Parseval: no inverse transform
+            tau = gt / tKt if tKt > 0 else 1.0 / (self_compliance * reentry)  # no direction: re-entry only
+            psum, n_overlap, t_kept, n_contact = sweeps.step_project_reenter(p, factor, t, w, approach, tau,
+                                                                             tau * reentry, contact)
+            restart = n_overlap > restart_fraction * n_contact
+            if load_control:
+                if psum <= 0:  # lost every point: restart from the highest point
+                    p[...] = np.where(hp == 0.0, 1.0, 0.0)
+                    np.greater(p, 0.0, out=contact)
+                    psum, n_contact, restart = p.sum(), int(np.count_nonzero(contact)), True
+                factor = mean_pressure * n / psum
+        # the answer in the buffers themselves (periodic): no grid-sized copy at the memory peak
+        pressure = fz.as2d(transforms.take("pressure"))
+        pressure *= factor
+        gap = fz.as2d(transforms.take("displacement"))
+        gap *= factor
+        gap -= approach
+        return _state(pressure, gap, hp, shape, approach, it, residual, tol, fz.as2d(transforms.take("residual")))
 
 
 def _state(p, gap, hp, shape, approach, it, residual, tol, out=None) -> ContactState:
