@@ -235,7 +235,7 @@ def _unit_multiplier(grid: Grid, kernel: str, periodic: bool) -> np.ndarray:
 
 
 class Compliance:
-    """Normal compliance of an elastic half-space on ``grid``.
+    """Normal compliance of an elastic half-space or layer on ``grid``.
 
     Parameters
     ----------
@@ -246,35 +246,65 @@ class Compliance:
         ``spectral``: continuous multiplier ``2/(E*|q|)`` (non-periodic: collocated point loads);
         ``love``: uniform pressure on each element (Love), summed over periodic images.
     periodic : bool
+    transfer : ndarray, optional
+        A periodic spectral normal compliance of another body on the rfft layout [length/pressure]
+        (:attr:`contactlib.kernels.SurfaceGreenTensor.normal`, a layer's), in place of the half-space's:
+        real, even, positive for ``q != 0``; its ``q = 0`` entry may be positive (a confined layer's
+        uniaxial compliance: the operator is then :attr:`definite`) or 0 (zero-mean displacements).
     """
 
-    def __init__(self, grid: Grid, *, E_star: float, kernel: str = "spectral", periodic: bool = True):
+    def __init__(self, grid: Grid, *, E_star: float, kernel: str = "spectral", periodic: bool = True,
+                 transfer: np.ndarray | None = None):
         if kernel not in KERNELS:
             raise ValueError(f"kernel must be one of {KERNELS}, got {kernel!r}")
         self.grid, self.E_star, self.kernel, self.periodic = grid, float(E_star), kernel, bool(periodic)
         self.work_shape = grid.shape if periodic else grid.padded().shape
-        self.multiplier = _unit_multiplier(grid, kernel, self.periodic) / self.E_star
+        self._transfer = transfer
+        if transfer is None:
+            self.multiplier = _unit_multiplier(grid, kernel, self.periodic) / self.E_star
+        else:
+            if not self.periodic or kernel != "spectral":
+                raise ValueError("a layer's compliance is a periodic spectral kernel (periodic=True, kernel='spectral')")
+            self.multiplier = fft.convolution_multiplier(transfer, self.work_shape)
         self._block = tuple(slice(0, n) for n in grid.shape)
         self._inverse = None
-        self._lowest_wavenumber = None  # set with _inverse
+        self._softest = None  # set with _inverse
+
+    @property
+    def definite(self) -> bool:
+        """Whether the compliance fixes the mean displacement: zero-padded, or a periodic body whose
+        ``q = 0`` mode has a finite stiffness (a compressible confined layer). A periodic half-space
+        does not: its displacements are zero-mean and a penetration is measured from their mean."""
+        return not self.periodic or float(self.multiplier.flat[0]) > 0
 
     @property
     def inverse_multiplier(self) -> np.ndarray:
-        """The continuous half-space stiffness ``E*|q|/2`` on the work grid (normalised); its zero
-        mode takes the lowest non-zero wavenumber's value so it stays definite."""
+        """The preconditioner: the continuous half-space stiffness ``E*|q|/2`` on the work grid (or the
+        exact inverse of a layer's ``transfer``), normalised; a zero mode without stiffness takes the
+        lowest non-zero wavenumber's value so it stays definite."""
         if self._inverse is None:
-            q = Grid(self.work_shape, self.grid.lengths if self.periodic else self.grid.padded().lengths).wavenumber()
-            self._lowest_wavenumber = float(q.flat[1]) if q.size > 1 else 1.0
-            q.flat[0] = self._lowest_wavenumber
-            self._inverse = fft.convolution_multiplier(self.E_star * q / 2, self.work_shape)
+            if self._transfer is None:
+                q = Grid(self.work_shape, self.grid.lengths if self.periodic else self.grid.padded().lengths).wavenumber()
+                lowest = float(q.flat[1]) if q.size > 1 else 1.0
+                q.flat[0] = lowest
+                stiffness = self.E_star * q / 2
+                self._softest = self.E_star * lowest / 2
+            else:
+                stiffness = np.zeros_like(self._transfer)
+                np.divide(1.0, self._transfer, out=stiffness, where=self._transfer > 0)
+                self._softest = float(stiffness.flat[1:].min())
+                if stiffness.flat[0] == 0:
+                    stiffness.flat[0] = stiffness.flat[1]
+            self._inverse = fft.convolution_multiplier(stiffness, self.work_shape)
         return self._inverse
 
     def reentry_scale(self) -> float:
-        """``E* q1 / 2`` [pressure/length] at the lowest non-zero wavenumber ``q1`` of the work grid:
-        the preconditioner's stiffness for its longest wave (and for its zero mode), its softest.
-        The preconditioned solver re-enters a point at this stiffness times its overlap."""
-        self.inverse_multiplier  # builds it once, with q1: the preconditioned solve needs it anyway
-        return self.E_star * self._lowest_wavenumber / 2
+        """The preconditioner's softest stiffness [pressure/length]: ``E* q1 / 2`` at the lowest non-zero
+        wavenumber ``q1`` of the work grid for a half-space (its longest wave, and its zero mode), the
+        smallest over ``q != 0`` for a layer. The preconditioned solver re-enters a point at this
+        stiffness times its overlap."""
+        self.inverse_multiplier  # builds it once: the preconditioned solve needs it anyway
+        return self._softest
 
     def load(self) -> np.ndarray:
         """Writable view where the next input field goes (padding already zeroed)."""
@@ -367,6 +397,7 @@ class Stiffness(Compliance):
             raise ValueError("Stiffness: the compliance must be periodic (a zero-padded one has no exact inverse)")
         self.grid, self.E_star, self.kernel, self.periodic = compliance.grid, compliance.E_star, compliance.kernel, True
         self.work_shape, self._block = compliance.work_shape, compliance._block
+        self._transfer = None
         count = float(np.prod(self.work_shape))
         transfer = compliance.multiplier * count
         stiffness = np.zeros_like(transfer)
@@ -382,3 +413,36 @@ class Stiffness(Compliance):
         problem turns a tensile pressure into a gap, and the gentlest such conversion keeps it stable
         (the longest wave's, 1e3 times larger on 256^2, made the iteration diverge)."""
         return self._softest
+
+
+class Coupling:
+    """The normal displacement due to a Coulomb traction ``mu p`` along a sliding direction: ``W p``.
+
+    ``W`` is the normal-tangential block of the surface Green's tensor times ``mu``: odd in ``q``,
+    so antisymmetric in real space (the skew part of the frictional normal operator ``K + W``).
+    Periodic: the complex multiplier ``-i mu c (q . s)/|q|``
+    (:meth:`contactlib.kernels.SurfaceGreenTensor.coupling_multiplier`); non-periodic: the half-space's
+    real-space influence coefficients on the zero-padded box
+    (:func:`contactlib.kernels.halfspace_coupling_influence`). Applied once per outer iteration of
+    :func:`contactlib.solvers.solve_coupled`, on FFT buffers of its own.
+    """
+
+    def __init__(self, grid: Grid, *, periodic: bool, friction: float, transfer: np.ndarray | None = None,
+                 influence: np.ndarray | None = None):
+        self.grid, self.periodic = grid, bool(periodic)
+        self.work_shape = grid.shape if periodic else grid.padded().shape
+        self._block = tuple(slice(0, n) for n in grid.shape)
+        if periodic:
+            spectrum = friction * np.asarray(transfer)
+        else:
+            spectrum = friction * fft.rfftn(influence)  # odd kernel: imaginary spectrum
+        self.multiplier = np.ascontiguousarray(spectrum / float(np.prod(self.work_shape)), dtype="complex128")
+
+    def __call__(self, pressure: np.ndarray) -> np.ndarray:
+        """``W pressure`` [length] (a new array)."""
+        plan = fft.get_fft(self.work_shape, slot="coupling")
+        plan.real.fill(0.0)
+        plan.real[self._block] = pressure
+        spectrum = plan.forward()
+        spectrum *= self.multiplier
+        return plan.inverse()[self._block].copy()

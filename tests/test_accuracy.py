@@ -10,6 +10,7 @@ import xarray as xr
 import contactlib
 from contactlib import accuracy, studies, sweep
 from contactlib.reference import westergaard
+from contactlib.studies import speed_vs_error
 
 SCENE = dict(E=1.0, nu=0.5, max_iter=10_000, radius=1.0, contact_fraction=0.6, amplitude=0.01,
              full_contact_margin=2.0, hurst=0.8, seed=0, q_low=1, q_roll=2, q_cutoff=4, rms_slope=0.1,
@@ -202,9 +203,9 @@ def test_tolerance_ladder_reports_unreached_tolerances_as_not_converged():
 def test_failed_rough_reference_is_solved_once_and_reported_per_point(monkeypatch):
     """A reference short of REFERENCE_FLOOR * tol fails every point of its task, as not converged,
     without being solved again for each of them (at 8192^2 one attempt costs ten minutes)."""
-    monkeypatch.setattr(studies, "REFERENCE_MAX_ITER", 2)
-    studies.rough_reference.cache_clear()
-    studies._speed_error_results.cache_clear()
+    monkeypatch.setattr(speed_vs_error, "REFERENCE_MAX_ITER", 2)  # where _speed_error_results reads it
+    speed_vs_error.rough_reference.cache_clear()
+    speed_vs_error._speed_error_results.cache_clear()
     ladder = (1e-4, 1e-8)
     for kernel in ("love", "spectral"):
         for tol in ladder:
@@ -212,6 +213,6 @@ def test_failed_rough_reference_is_solved_once_and_reported_per_point(monkeypatc
                                                   "tol_ladder": ladder})
             assert result["status"] == sweep.STATUS_NOT_CONVERGED
             assert "rough reference on 128^2" in result["message"] and result["residual"] > 1e-12 * 1000
-    assert studies.rough_reference.cache_info().misses == 1
-    studies.rough_reference.cache_clear()
-    studies._speed_error_results.cache_clear()
+    assert speed_vs_error.rough_reference.cache_info().misses == 1
+    speed_vs_error.rough_reference.cache_clear()
+    speed_vs_error._speed_error_results.cache_clear()

@@ -102,9 +102,9 @@ def solve_polonsky_keer(
     # mean has zero curvature, the step length blows up and p reaches 1e19. With the
     # preconditioner's zero mode set to 0 as well, it stays stuck at full contact instead. Plain CG
     # converges, slowly; contactlib.solve runs the dual problem there instead (.dual: the gap as
-    # unknown, its mean fixed, preconditioned). The non-periodic compliance is definite, and the
-    # preconditioner works under either control.
-    precondition = precondition and (load_control or not operator.periodic)
+    # unknown, its mean fixed, preconditioned). A definite compliance (non-periodic, or a confined
+    # compressible layer's) has no such mode, and the preconditioner works under either control.
+    precondition = precondition and (load_control or operator.definite)
     hp = fz.as2d(heights - heights.max())  # <= 0; gap = K p - hp - approach
     scale = height_scale(heights)
     n = heights.size

@@ -23,6 +23,8 @@ class ContactState:
     residual: float
     converged: bool
     solver: str
+    outer_iterations: int = 0
+    """Inner solves of a coupled (frictional) solve; 0 for the frictionless solvers."""
 
 
 def height_scale(heights: np.ndarray) -> float:

@@ -1,0 +1,131 @@
+"""The surface Green's tensor on a q-grid: normal, tangential and normal-tangential compliances.
+
+A traction ``(tau_x, tau_y, p)`` with wavevector ``q`` on a half-space or layer splits into plane
+strain along ``q`` (``p`` and ``tau . q/|q|``) and anti-plane shear across it (``tau . t``, with
+``t = (-q_y, q_x)/|q|``), which moves the surface only across ``q``. So on the rfft layout::
+
+    u_z = Czz p - i c (q . tau) / |q|
+    u   = i c p q/|q| + Cxx (q . tau) q/|q|^2 + Canti (t . tau) t         (in-plane, 2D)
+
+with ``u_z`` positive into the body. ``Czz, c, Cxx, Canti`` are functions of ``|q|`` alone: the
+half-space's (``2/(E* |q|)``, Johnson eqs. 2.19-2.20) times the layer factors of
+:mod:`.layer`. A profile (plane strain) has ``q/|q| = sgn(q)`` and no anti-plane part. The
+coupling ``c`` is odd in ``q``, so the normal-tangential blocks are antisymmetric (Betti) in
+real space: a Coulomb traction ``mu p s`` makes the normal operator ``Czz - i mu c (q . s)/|q|``
+non-symmetric, with the symmetric part ``Czz``.
+
+Every array here is an unnormalised transfer function (displacement spectrum per traction
+spectrum) [length/pressure]; :func:`contactlib.fft.convolution_multiplier` turns it into a
+multiplier.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..grid import Grid
+from .layer import halfspace_factors, layer_factors, zero_mode_compliance
+
+
+@dataclass(frozen=True)
+class SurfaceGreenTensor:
+    """The four scalar compliances of :mod:`this module <contactlib.kernels.tensor>` on a grid's
+    rfft layout [length/pressure], the ``q = 0`` entries included."""
+
+    normal: np.ndarray
+    coupling: np.ndarray
+    inplane: np.ndarray
+    antiplane: np.ndarray
+
+    def coupling_multiplier(self, grid: Grid, direction: float) -> np.ndarray:
+        """``-i c (q . s)/|q|``: the normal displacement per unit tangential traction along
+        ``s = (cos direction, sin direction)`` (1D: along ``+x``) [length/pressure], complex."""
+        q = grid.wavevectors()
+        k = grid.wavenumber()
+        safe = np.where(k > 0, k, 1.0)
+        along = np.sign(q[0]) if grid.dim == 1 else (q[0] * np.cos(direction) + q[1] * np.sin(direction)) / safe
+        return -1j * self.coupling * np.where(k > 0, along, 0.0)
+
+    def tangential_displacement(self, grid: Grid, pressure_spectrum: np.ndarray, traction_spectra) -> tuple:
+        """In-plane surface displacement spectra ``(u_x,)`` (1D) or ``(u_x, u_y)`` (2D) due to a pressure
+        and a tangential traction (its spectra per axis), unnormalised like :func:`numpy.fft.rfftn`."""
+        q = grid.wavevectors()
+        k = grid.wavenumber()
+        safe = np.where(k > 0, k, 1.0)
+        if grid.dim == 1:
+            n = np.sign(q[0])
+            return (1j * self.coupling * n * pressure_spectrum + self.inplane * traction_spectra[0],)
+        nx, ny = np.where(k > 0, q[0] / safe, 0.0), np.where(k > 0, q[1] / safe, 0.0)
+        along = nx * traction_spectra[0] + ny * traction_spectra[1]
+        across = -ny * traction_spectra[0] + nx * traction_spectra[1]
+        normal_part = 1j * self.coupling * pressure_spectrum + self.inplane * along
+        ux = normal_part * nx - self.antiplane * across * ny
+        uy = normal_part * ny + self.antiplane * across * nx
+        # q = 0: a uniform traction shears the body uniformly (no direction to split along)
+        ux[0, 0] = self.inplane[0, 0] * traction_spectra[0][0, 0]
+        uy[0, 0] = self.inplane[0, 0] * traction_spectra[1][0, 0]
+        return ux, uy
+
+
+def surface_green_tensor(grid: Grid, E: float, nu: float, thickness: float | None = None,
+                         base: str = "confined") -> SurfaceGreenTensor:
+    """The surface Green's tensor of a half-space (``thickness=None``) or a layer on ``grid``.
+
+    Parameters
+    ----------
+    grid : Grid
+        Periodic grid; the tensor is sampled at its wavevectors (the continuous kernel).
+    E, nu : float
+        Young's modulus [pressure] and Poisson ratio (validated by the caller).
+    thickness : float, optional
+        Layer thickness [length]; ``None`` for the half-space.
+    base : {"confined", "remote_pressure"}
+        The layer's back face: bonded to a rigid base, or free and loaded by the balancing pressure.
+
+    The ``q = 0`` entries are :func:`.layer.zero_mode_compliance`'s (0 for a half-space: its mean
+    displacement is undetermined, so periodic displacements are zero-mean).
+    """
+    k = grid.wavenumber()
+    positive = k > 0
+    unit = np.zeros_like(k)
+    unit[positive] = 2 * (1 - nu**2) / (E * k[positive])
+    if thickness is None:
+        factors = {name: np.full_like(k, value) for name, value in halfspace_factors(nu).items()}
+        zero = {"normal": 0.0, "tangential": 0.0}
+    else:
+        X = np.where(positive, k * thickness, 1.0)
+        factors = layer_factors(X, nu, base)
+        zero = zero_mode_compliance(thickness, E, nu, base)
+    anti_unit = unit / (1 - nu)  # 2 (1 + nu) / (E |q|)
+    tensor = SurfaceGreenTensor(normal=unit * factors["normal"], coupling=unit * factors["coupling"],
+                                inplane=unit * factors["inplane"], antiplane=anti_unit * factors["antiplane"])
+    origin = (0,) * grid.dim
+    tensor.normal[origin] = zero["normal"]
+    tensor.coupling[origin] = 0.0
+    tensor.inplane[origin] = zero["tangential"]
+    tensor.antiplane[origin] = zero["tangential"]
+    return tensor
+
+
+def halfspace_coupling_influence(grid: Grid, E: float, nu: float, direction: float) -> np.ndarray:
+    """Non-periodic normal displacement per unit tangential traction along ``direction``, on the padded
+    ``2n`` circular layout (the real-space counterpart of :meth:`SurfaceGreenTensor.coupling_multiplier`).
+
+    1D: ``(1 - 2 nu)(1 + nu) / (2 E) dx sgn(x)`` (Johnson eq. 2.20b; exact for a uniform element at the
+    nodes). 2D: Cerruti's ``(1 - 2 nu)(1 + nu) / (2 pi E) dA (x . s) / r^2`` for the element's load at
+    its node (Johnson eq. 3.86); both odd, so an element's own term is zero.
+    """
+    from .elastic import _offsets
+
+    off = _offsets(grid)
+    k0 = (1 - 2 * nu) * (1 + nu) / (2 * E)
+    if grid.dim == 1:
+        return k0 * grid.spacing[0] * np.sign(off[0])
+    x, y = off
+    r2 = x**2 + y**2
+    along = x * np.cos(direction) + y * np.sin(direction)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        out = np.where(r2 > 0, k0 / np.pi * grid.element_area * along / r2, 0.0)
+    return out
