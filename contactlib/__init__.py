@@ -1,6 +1,7 @@
 """contactlib: rough-surface contact mechanics with FFT boundary elements.
 
-The public API: :func:`solve` for frictionless normal contact, :mod:`contactlib.surfaces` to
+The public API: :func:`solve` for normal contact on a half-space or :class:`Layer`, with Coulomb
+friction, :mod:`contactlib.surfaces` to
 generate surfaces, :mod:`contactlib.analysis` to measure them and their contact fields,
 :mod:`contactlib.accuracy` for the measured grid and tolerance rules
 (``solve(..., target_error=...)``).
@@ -8,7 +9,8 @@ generate surfaces, :mod:`contactlib.analysis` to measure them and their contact 
 
 from . import accuracy, analysis, reference, surfaces
 from ._version import __version__
+from .bodies import Layer
 from .contact import ConvergenceError, solve, solve_tolerances
 from .grid import Grid
 
-__all__ = ["solve", "solve_tolerances", "ConvergenceError", "Grid", "surfaces", "analysis", "reference", "accuracy", "__version__"]
+__all__ = ["solve", "Layer", "solve_tolerances", "ConvergenceError", "Grid", "surfaces", "analysis", "reference", "accuracy", "__version__"]

@@ -9,13 +9,15 @@ import time
 import numpy as np
 import xarray as xr
 
-from . import accuracy
+from . import accuracy, fft
+from .analysis.friction import interlocking_friction
 from ._version import __version__
 from .grid import Grid
 from .labels import attrs_for
 from .materials import contact_modulus
-from .operators import KERNELS, Compliance
-from .solvers import ContactState, solve_active_set, solve_periodic_displacement, solve_polonsky_keer
+from .bodies import BodyModel, Layer, body_model
+from .operators import KERNELS
+from .solvers import ContactState, solve_active_set, solve_coupled, solve_periodic_displacement, solve_polonsky_keer
 
 METHODS = ("cg", "active-set")
 
@@ -117,8 +119,11 @@ def solve(
     length_unit: str = "m",
     pressure_unit: str = "Pa",
     target_error: float | None = None,
+    layer: Layer | None = None,
+    friction: float = 0.0,
+    sliding_direction: float = 0.0,
 ) -> xr.Dataset:
-    """Frictionless normal contact of a rigid rough surface on an elastic half-space.
+    """Normal contact of a rigid rough surface on an elastic half-space or layer, with Coulomb friction.
 
     Parameters
     ----------
@@ -161,12 +166,32 @@ def solve(
         :func:`contactlib.accuracy.points_per_wavelength` asks (the grid is the caller's: refine
         the surface with :func:`contactlib.surfaces.resample` or generate it at
         :func:`contactlib.accuracy.settings_for`'s ``n``). Recorded in ``attrs``.
+    layer : contactlib.Layer, optional
+        A layer of finite thickness on a rigid base (``"confined"``) or with a free back face loaded by
+        the balancing pressure (``"remote_pressure"``) instead of a half-space; periodic, ``kernel=
+        "spectral"``, ``0 <= nu <= 0.5``. A confined compressible layer has a finite uniaxial
+        stiffness, so its penetration is measured from the undeformed surface; the others' mean
+        displacement is undetermined (zero-mean, as for the half-space).
+    friction : float
+        Coulomb coefficient ``mu_c >= 0``: on the contact the body carries the tangential traction
+        ``mu_c p`` along ``sliding_direction``. Through the normal-tangential terms of the Green's
+        tensor it moves the surface normally (material coupling, ``nu < 0.5``; geometric, a finite
+        layer), which makes the pressure asymmetric (:mod:`contactlib.solvers.coupled`).
+    sliding_direction : float
+        Direction [rad, in the x-y plane] in which the rigid surface moves relative to the body;
+        a profile slides along ``+x`` (give 0, or pi to slide along ``-x``).
 
     Returns
     -------
     xarray.Dataset
         ``pressure``, ``gap``, ``displacement`` fields and scalars ``contact_area``,
-        ``mean_pressure``, ``penetration``, ``iterations``, ``residual``.
+        ``mean_pressure``, ``penetration``, ``iterations``, ``residual``; with friction, also the
+        tangential traction and (periodic) the tangential displacement fields, and
+        ``friction_coefficient_interlocking`` (``mu_a``, :func:`interlocking_friction`) and
+        ``friction_coefficient`` (``mu_c + mu_a``). ``attrs['model']`` says which model ran
+        (:mod:`contactlib.bodies`: the half-space where a layer is within tolerance of it, no
+        coupling where it vanishes); ``attrs['full_contact']`` is 1, with a message, when the
+        contact is complete (the load no longer changes the area).
 
     Examples
     --------
@@ -178,7 +203,8 @@ def solve(
     """
     setup = _setup(heights, E=E, nu=nu, mean_pressure=mean_pressure, penetration=penetration, periodic=periodic,
                    tol=tol, max_iter=max_iter, kernel=kernel, method=method, length=length,
-                   initial_pressure=initial_pressure, target_error=target_error)
+                   initial_pressure=initial_pressure, target_error=target_error, layer=layer, friction=friction,
+                   sliding_direction=sliding_direction)
     start = time.perf_counter()
     state = setup.run()
     wall = time.perf_counter() - start
@@ -234,7 +260,8 @@ def solve_tolerances(
         _check_tolerance(t, "tols")
     setup = _setup(heights, E=E, nu=nu, mean_pressure=mean_pressure, penetration=penetration, periodic=periodic,
                    tol=min(tols), max_iter=max_iter, kernel=kernel, method="cg", length=length,
-                   initial_pressure=initial_pressure, target_error=None)
+                   initial_pressure=initial_pressure, target_error=None, layer=None, friction=0.0,
+                   sliding_direction=0.0)
     pending = sorted(set(tols), reverse=True)
     found: dict[float, tuple[ContactState, float]] = {}
     paused = 0.0
@@ -279,22 +306,32 @@ class _Setup:
     grid: Grid
     dims: tuple
     coords: dict
-    operator: Compliance
+    body: BodyModel
     solver_args: dict
     attrs: dict
     method: str
 
+    @property
+    def operator(self):
+        return self.body.compliance
+
     def run(self, monitor=None, verify_below=None) -> ContactState:
         """Solve; ``verify_below``: see :func:`contactlib.solvers.solve_periodic_displacement`."""
+        if self.body.coupling is not None:
+            return solve_coupled(self._symmetric, self.body.coupling, self.values, **self.solver_args)
         if self.method == "cg":
-            if self.operator.periodic and self.solver_args["penetration"] is not None:
-                # the primal iteration cannot be preconditioned there; its dual can (solvers/dual.py)
-                args = {k: v for k, v in self.solver_args.items() if k != "mean_pressure"}
-                return solve_periodic_displacement(self.operator, self.values, monitor=monitor,
-                                                   verify_below=verify_below, **args)
-            return solve_polonsky_keer(self.operator, self.values, monitor=monitor, **self.solver_args)
+            return self._symmetric(self.values, monitor=monitor, verify_below=verify_below, **self.solver_args)
         args = {k: v for k, v in self.solver_args.items() if k != "initial_pressure"}
         return solve_active_set(self.operator, self.values, **args)
+
+    def _symmetric(self, heights, *, monitor=None, verify_below=None, **args) -> ContactState:
+        """The constrained CG of the symmetric compliance (the whole problem, or a coupled solve's inner one)."""
+        if not self.operator.definite and args["penetration"] is not None:
+            # the primal iteration cannot be preconditioned there; its dual can (solvers/dual.py)
+            args = {k: v for k, v in args.items() if k != "mean_pressure"}
+            return solve_periodic_displacement(self.operator, heights, monitor=monitor, verify_below=verify_below,
+                                               **args)
+        return solve_polonsky_keer(self.operator, heights, monitor=monitor, **args)
 
     def label(self, state: ContactState, wall: float, *, length_unit: str, pressure_unit: str,
               tol: float | None = None) -> xr.Dataset:
@@ -304,7 +341,40 @@ class _Setup:
                          "contactlib_version": __version__, "window_lengths": list(self.grid.lengths)})
         if tol is not None:
             ds.attrs["tol"] = tol
+        if state.outer_iterations:
+            ds["outer_iterations"] = ((), state.outer_iterations, attrs_for("outer_iterations"))
+        if ds.attrs["friction"] > 0:
+            self._label_friction(ds, state, length_unit, pressure_unit)
+        if np.all(state.pressure > 0):
+            ds.attrs["full_contact"] = 1
+            ds.attrs["full_contact_message"] = ("full contact: every element carries pressure, so the contact area "
+                                                "cannot grow with the load (a thin remote-pressure layer wraps the "
+                                                "surface at a lower load than a thick one)")
+        else:
+            ds.attrs["full_contact"] = 0
         return ds
+
+    def _label_friction(self, ds: xr.Dataset, state: ContactState, length_unit: str, pressure_unit: str) -> None:
+        """The tangential traction ``mu_c p s`` and (periodic) the tangential displacement it and the
+        pressure cause; ``mu_a`` and ``mu = mu_c + mu_a``."""
+        mu, direction = ds.attrs["friction"], ds.attrs["sliding_direction"]
+        axes = ("x", "y")[: self.grid.dim]
+        components = (np.cos(direction), np.sin(direction))[: self.grid.dim]
+        tractions = [mu * c * state.pressure for c in components]
+        for axis, traction in zip(axes, tractions):
+            name = f"tangential_traction_{axis}"
+            ds[name] = (self.dims, traction, attrs_for(name, length=length_unit, pressure=pressure_unit))
+        if self.body.tensor is not None:
+            spectra = self.body.tensor.tangential_displacement(self.grid, fft.rfftn(state.pressure),
+                                                               [fft.rfftn(t) for t in tractions])
+            for axis, spectrum in zip(axes, spectra):
+                name = f"tangential_displacement_{axis}"
+                ds[name] = (self.dims, fft.irfftn(spectrum, self.grid.shape),
+                            attrs_for(name, length=length_unit, pressure=pressure_unit))
+        mu_a = interlocking_friction(state.pressure, self.values, lengths=self.grid.lengths, direction=direction,
+                                     periodic=self.operator.periodic)
+        ds["friction_coefficient_interlocking"] = ((), mu_a, attrs_for("friction_coefficient_interlocking"))
+        ds["friction_coefficient"] = ((), mu + mu_a, attrs_for("friction_coefficient"))
 
     def check(self, state: ContactState, ds: xr.Dataset) -> None:
         """Refuse a footprint cut by the window edge; raise :class:`ConvergenceError` if unconverged."""
@@ -315,8 +385,9 @@ class _Setup:
             )
         if not state.converged:
             tol, max_iter = ds.attrs["tol"], self.solver_args["max_iter"]
-            stalled = state.solver.startswith("polonsky-keer") and state.iterations < max_iter
-            message = (f"{state.solver} did not converge in {state.iterations} iterations: residual "
+            stalled = state.solver.startswith(("polonsky-keer", "coupled")) and state.iterations < max_iter
+            outer = f" ({state.outer_iterations} outer)" if state.outer_iterations else ""
+            message = (f"{state.solver} did not converge in {state.iterations} iterations{outer}: residual "
                        f"{state.residual:.3e} > tol {tol:.1e}"
                        + (" (stalled: no progress over the last iterations; round-off floor or an ill-posed scene)"
                           if stalled else ""))
@@ -324,9 +395,32 @@ class _Setup:
             raise ConvergenceError(message, residual=state.residual, dataset=ds)
 
 
+def _check_friction(layer, friction, sliding_direction, nu, method, kernel, periodic) -> None:
+    """The scene's body and interface: refused with the parameter named, before anything is built."""
+    if layer is not None:
+        if not isinstance(layer, Layer):
+            raise ValueError(f"layer must be a contactlib.Layer or None, got {layer!r}")
+        if not 0.0 <= nu <= 0.5:
+            raise ValueError(f"nu (Poisson ratio) must lie in [0, 0.5] for a layer, got {nu!r}")
+        if not periodic:
+            raise ValueError("layer: a layer is modelled on a periodic window only (periodic=True)")
+    if isinstance(friction, bool) or not isinstance(friction, (int, float)) or not math.isfinite(friction) \
+            or friction < 0:
+        raise ValueError(f"friction (Coulomb coefficient) must be a finite number >= 0, got {friction!r}")
+    if isinstance(sliding_direction, bool) or not isinstance(sliding_direction, (int, float)) \
+            or not math.isfinite(sliding_direction):
+        raise ValueError(f"sliding_direction must be a finite angle [rad], got {sliding_direction!r}")
+    if method == "active-set" and (layer is not None or friction > 0):
+        raise ValueError("method='active-set' solves frictionless half-space contact only: use method='cg' "
+                         "with a layer or friction")
+    if kernel == "love" and (layer is not None or friction > 0):
+        raise ValueError("kernel='love' is a half-space, frictionless kernel: use kernel='spectral' with a layer "
+                         "or friction")
+
+
 def _setup(heights, *, E, nu, mean_pressure, penetration, periodic, tol, max_iter, kernel, method, length,
-           initial_pressure, target_error) -> _Setup:
-    """Validate every argument of :func:`solve` and build the compliance operator."""
+           initial_pressure, target_error, layer, friction, sliding_direction) -> _Setup:
+    """Validate every argument of :func:`solve` and build the body's operators."""
     values, grid, dims, coords = grid_of(heights, length)
     E_star = contact_modulus(E, nu)
     _check_loads(mean_pressure, penetration)
@@ -344,26 +438,28 @@ def _setup(heights, *, E, nu, mean_pressure, penetration, periodic, tol, max_ite
         raise ValueError(f"kernel must be one of {KERNELS}, got {kernel!r}")
     if method not in METHODS:
         raise ValueError(f"method must be one of {METHODS}, got {method!r}")
-    if periodic and penetration is not None and penetration >= values.max() - values.mean():
-        raise ValueError(
-            f"penetration {penetration!r} reaches full contact (max - mean height = "
-            f"{values.max() - values.mean():.6g}); in a periodic window the load is then undetermined: "
-            "give mean_pressure instead"
-        )
+    _check_friction(layer, friction, sliding_direction, nu, method, kernel, periodic)
     warm = None
     if method == "cg" and initial_pressure is not None:
         warm = np.asarray(initial_pressure, dtype=float)
         if warm.shape != values.shape:
             raise ValueError(f"initial_pressure has shape {warm.shape}, heights {values.shape}")
-    operator = Compliance(grid, E_star=E_star, kernel=kernel, periodic=periodic)
+    body = body_model(grid, E=float(E), nu=float(nu), layer=layer, friction=float(friction),
+                      direction=float(sliding_direction), tol=tol, kernel=kernel, periodic=periodic)
+    if not body.compliance.definite and penetration is not None and penetration >= values.max() - values.mean():
+        raise ValueError(
+            f"penetration {penetration!r} reaches full contact (max - mean height = "
+            f"{values.max() - values.mean():.6g}); in a periodic window the load is then undetermined: "
+            "give mean_pressure instead"
+        )
     attrs = {"kernel": kernel, "periodic": int(periodic), "tol": tol, "max_iter": int(max_iter), "E": float(E),
              "nu": float(nu), "E_star": E_star,
-             "load_control": "mean_pressure" if mean_pressure is not None else "penetration"}
+             "load_control": "mean_pressure" if mean_pressure is not None else "penetration", **body.attrs}
     if target_error is not None:
         attrs["target_error"] = float(target_error)
     solver_args = {"mean_pressure": mean_pressure, "penetration": penetration, "tol": tol,
                    "max_iter": int(max_iter), "initial_pressure": warm}
-    return _Setup(values, grid, dims, coords, operator, solver_args, attrs, method)
+    return _Setup(values, grid, dims, coords, body, solver_args, attrs, method)
 
 
 def _touches_edge(pressure: np.ndarray) -> bool:
