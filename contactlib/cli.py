@@ -10,6 +10,7 @@ import xarray as xr
 
 from . import surfaces
 from ._version import __version__
+from .bodies import Layer
 from .contact import ConvergenceError, solve
 
 
@@ -36,10 +37,11 @@ def _solve(args) -> int:
     with xr.open_dataset(args.surface) as ds:
         heights = ds[args.variable].load()
     try:
+        layer = None if args.thickness is None else Layer(args.thickness, args.base)
         out = solve(
             heights, E=args.E, nu=args.nu, mean_pressure=args.mean_pressure, penetration=args.penetration,
             periodic=not args.non_periodic, tol=args.tol, max_iter=args.max_iter, kernel=args.kernel,
-            method=args.method,
+            method=args.method, layer=layer, friction=args.friction, sliding_direction=args.sliding_direction,
         )
         status = 0
     except ConvergenceError as err:
@@ -50,7 +52,8 @@ def _solve(args) -> int:
     _write(out, args.output)
     print(f"contact_area={float(out.contact_area):.6g} mean_pressure={float(out.mean_pressure):.6g} "
           f"penetration={float(out.penetration):.6g} iterations={int(out.iterations)} "
-          f"residual={float(out.residual):.3e}")
+          f"residual={float(out.residual):.3e}"
+          + (f" friction_coefficient={float(out.friction_coefficient):.6g}" if "friction_coefficient" in out else ""))
     return status
 
 
@@ -91,6 +94,12 @@ def build_parser() -> argparse.ArgumentParser:
     v.add_argument("--max-iter", type=int, default=10_000, help="iteration bound (default 10000)")
     v.add_argument("--kernel", default="spectral", choices=("spectral", "love"))
     v.add_argument("--method", default="cg", choices=("cg", "active-set"))
+    v.add_argument("--thickness", type=float, help="layer thickness [m] (default: a half-space)")
+    v.add_argument("--base", default="confined", choices=("confined", "remote_pressure"),
+                   help="the layer's back face: on a rigid base, or free under the balancing pressure")
+    v.add_argument("--friction", type=float, default=0.0, help="Coulomb friction coefficient mu_c (default 0)")
+    v.add_argument("--sliding-direction", type=float, default=0.0,
+                   help="direction the rigid surface moves relative to the body [rad] (default 0: +x)")
     v.add_argument("-o", "--output", required=True, help="output NetCDF file")
     v.set_defaults(func=_solve)
     return parser

@@ -56,3 +56,19 @@ def test_non_convergence_exit_status_keeps_partial_result(tmp_path):
 def test_exactly_one_load_on_the_command_line():
     with pytest.raises(SystemExit):
         main(["solve", "x.nc", "--E", "1", "--nu", "0.3", "--mean-pressure", "1", "--penetration", "1", "-o", "o"])
+
+
+def test_solve_with_layer_and_friction_matches_api(tmp_path):
+    surf, out = tmp_path / "s.nc", tmp_path / "o.nc"
+    assert main(["surface", "--n", "64", "--hurst", "0.7", "--q-roll", "2", "--q-cutoff", "16", "--rms-slope",
+                 "0.1", "--seed", "2", "-o", str(surf)]) == 0
+    assert main(["solve", str(surf), "--E", "1.0", "--nu", "0.3", "--mean-pressure", "0.01", "--thickness", "0.05",
+                 "--base", "confined", "--friction", "0.6", "--sliding-direction", "0.5", "-o", str(out)]) == 0
+    with xr.open_dataset(surf) as s, xr.open_dataset(out) as o:
+        api = contactlib.solve(s.height, E=1.0, nu=0.3, mean_pressure=0.01, layer=contactlib.Layer(0.05),
+                               friction=0.6, sliding_direction=0.5)
+        np.testing.assert_array_equal(o.pressure.values, api.pressure.values)
+        assert float(o.friction_coefficient) == float(api.friction_coefficient)
+        assert o.attrs["layer_base"] == "confined" and o.attrs["coupling"] == "normal-tangential"
+    assert main(["solve", str(surf), "--E", "1.0", "--nu", "0.3", "--mean-pressure", "0.01", "--thickness", "-1",
+                 "-o", str(out)]) == 2
