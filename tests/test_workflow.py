@@ -38,6 +38,7 @@ def test_lint_and_dry_runs(workdir):
         assert dry.returncode == 0, dry.stderr
         assert "run_study" in dry.stdout and "plot_area_load" in dry.stdout
         assert "plot_speed_vs_error" in dry.stdout and "tabulate_speed_vs_error" in dry.stdout
+        assert "plot_fig5_friction_area" in dry.stdout and "plot_fig6a_interlocking" in dry.stdout
 
 
 @pytest.mark.parametrize("path, value, message", [
@@ -45,6 +46,8 @@ def test_lint_and_dry_runs(workdir):
     (("scale",), "huge", "'huge' is not one of ['quick', 'paper']"),
     (("material", "nu"), 0.7, "0.7 is greater than the maximum of 0.5"),
     (("studies", "validation", "quick", "grid", "n"), [64, 12], "12 is less than the minimum of 16"),
+    (("studies", "fig6a_interlocking", "quick", "grid", "nu"), [0.3, 0.6], "0.6 is greater than the maximum of 0.5"),
+    (("studies", "fig5_friction_area", "quick", "grid", "scaled_pressure"), [1.0, 0], "0 is less than or equal to"),
 ])
 def test_bad_config_is_rejected_with_a_clear_message(workdir, path, value, message):
     config = yaml.safe_load(TINY.read_text())
@@ -90,9 +93,23 @@ def test_tiny_end_to_end_run_and_report(workdir):
         assert float(ds.pressure_error.sel(scene="wavy_2d", kernel="spectral").max()) < 1e-12  # exact: one mode
         hertz = ds.load_error.sel(scene="hertz", tol=1e-10, kernel="spectral")  # first order: halves
         assert 0.4 < float(hertz.sel(n=64) / hertz.sel(n=32)) < 0.8
+    with xr.open_dataset(results / "fig5_friction_area.nc") as ds:
+        assert dict(ds.sizes) == {"friction": 2, "scaled_layer_thickness": 2, "scaled_pressure": 2, "seed": 1}
+        assert (ds.status == 0).all() and (ds.coupled == 1).all()
+        for name in list(ds.data_vars) + list(ds.coords):
+            assert ds[name].attrs.get("units") and ds[name].attrs.get("long_name"), name
+        # a0 is the same solve whatever mu_c; a thick layer (q0 h = 5) barely couples: a = a0
+        assert float(ds.frictionless_contact_area.std("friction").max()) == 0.0
+        assert float(abs(ds.area_ratio.sel(scaled_layer_thickness=5.0) - 1).max()) < 0.01
+        assert (ds.peak_height > 1.5 * ds.rms_height).all() and float(abs(ds.rms_slope - 0.13).max()) < 1e-12
+    with xr.open_dataset(results / "fig6a_interlocking.nc") as ds:
+        assert dict(ds.sizes) == {"nu": 2, "scaled_pressure": 2, "seed": 1} and (ds.status == 0).all()
+        assert ds.nu.attrs["long_name"] == "Poisson ratio of the layer" and "nu" not in ds.attrs
+        assert (ds.interlocking_ratio.sel(nu=0.5) > 0).all()  # geometric coupling alone resists sliding
     table = (results / "speed_vs_error_table.md").read_text()
     assert "| 1.00% | wavy_2d |" in table and "Convergence orders" in table
-    for study in ("validation", "area_load", "anisotropy", "speed_vs_error"):
+    for study in ("validation", "area_load", "anisotropy", "speed_vs_error", "fig5_friction_area",
+                  "fig6a_interlocking"):
         assert (results / "figures" / f"{study}.png").stat().st_size > 10_000
     assert not list(results.glob(".*.tmp"))
     report = snakemake(workdir, "--configfile", "tiny.yaml", "--report", "results/report.html", timeout=300)

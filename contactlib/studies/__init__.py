@@ -33,11 +33,14 @@ from ..sweep import SWEEP_VARIABLES
 from ._common import COMMON_VARIABLES, rough_surface
 from .anisotropy import anisotropy_point
 from .area_load import PERSSON_KAPPA, PUBLISHED_KAPPA_RANGE, area_load_point
+from .fig5_friction_area import friction_area_point
+from .fig6a_interlocking import interlocking_point
 from .speed_vs_error import (REFERENCE_FLOOR, REFERENCE_MAX_ITER, SCENES, rough_master, rough_reference,
                              speed_error_point, speed_error_shapes)
 from .validation import validation_point
 
-STUDY_MODULES = ("validation", "area_load", "anisotropy", "speed_vs_error")
+STUDY_MODULES = ("validation", "area_load", "anisotropy", "speed_vs_error", "fig5_friction_area",
+                 "fig6a_interlocking")
 """The study modules of this package, in registry order; each module's name is its study's name."""
 
 
@@ -61,6 +64,7 @@ STUDIES, STUDY_VARIABLES = _registry(STUDY_MODULES)
 
 __all__ = ["STUDIES", "STUDY_VARIABLES", "STUDY_MODULES", "add_error_estimate", "study_surfaces", "rough_surface",
            "validation_point", "area_load_point", "anisotropy_point", "speed_error_point", "speed_error_shapes",
+           "friction_area_point", "interlocking_point",
            "rough_master", "rough_reference", "SCENES", "REFERENCE_FLOOR", "REFERENCE_MAX_ITER", "PERSSON_KAPPA",
            "PUBLISHED_KAPPA_RANGE"]
 

@@ -81,3 +81,39 @@ rule tabulate_speed_vs_error:
         "../envs/contactlib.yaml"
     script:
         "../scripts/tabulate_speed_vs_error.py"
+
+
+rule plot_fig5_friction_area:
+    input:
+        data="results/fig5_friction_area.nc",
+    output:
+        report(
+            "results/figures/fig5_friction_area.png",
+            caption="../report/fig5_friction_area.rst",
+            category="Friction on thin layers",
+        ),
+    params:
+        panels=lookup(dpath="figures/fig5_friction_area", within=config),
+    log:
+        "logs/plot/fig5_friction_area.log",
+    conda:
+        "../envs/contactlib.yaml"
+    script:
+        "../scripts/plot_fig5_friction_area.py"
+
+
+rule plot_fig6a_interlocking:
+    input:
+        data="results/fig6a_interlocking.nc",
+    output:
+        report(
+            "results/figures/fig6a_interlocking.png",
+            caption="../report/fig6a_interlocking.rst",
+            category="Friction on thin layers",
+        ),
+    log:
+        "logs/plot/fig6a_interlocking.log",
+    conda:
+        "../envs/contactlib.yaml"
+    script:
+        "../scripts/plot_fig6a_interlocking.py"

@@ -25,6 +25,8 @@ def main(sm):
         dask["n_workers"] = max(1, min(dask["n_workers"], sm.threads // dask["threads_per_worker"]))
     config = {"study": spec, "material": material, "solver": {**solver, "warm_start": path_dim is not None},
               "dask": dask}
+    # a swept nu is a coordinate, not a global attribute
+    scene = {} if "nu" in spec["grid"] else {"nu": material["nu"], "E_star": material["E"] / (1 - material["nu"] ** 2)}
     with sweep.open_client(**dask, log=emit) as client:
         ds = sweep.run_grid(
             functools.partial(study["point"], **constants),
@@ -36,8 +38,7 @@ def main(sm):
             labels=studies.STUDY_VARIABLES,
             attrs={"title": spec["title"], "source": f"contactlib.studies.{study['point'].__name__}",
                    "study": spec["name"], "scale": spec["scale"], "config": json.dumps(config, sort_keys=True),
-                   "length_scale": "1 m", "E": material["E"], "nu": material["nu"],
-                   "E_star": material["E"] / (1 - material["nu"] ** 2)},
+                   "length_scale": "1 m", "E": material["E"], **scene},
             progress=emit,
             path_dim=path_dim,
             group_dims=study.get("group_dims", ()),
