@@ -24,8 +24,15 @@ Timing (all measurements): each configuration is solved once as a warm-up (FFTW 
 per shape, so planning is excluded), then ``--repeats`` times (more, up to 15, when that would
 take less than ``--min-time`` seconds in all); the median is reported, both of the whole
 ``contactlib.solve`` call and of the solver's own ``attrs['wall_time']`` (set-up and labelling
-excluded). Ratios are taken between medians measured in the same run. A ContactMechanics solve
-longer than ``--single-above`` seconds is timed once (the ladder's own run).
+excluded). The configurations compared in one row (a scene without and with friction; the
+half-space and its layers) are timed interleaved, one solve of each in turn, so that a change in
+the machine's load hits them alike. A ContactMechanics solve longer than ``--single-above`` seconds
+is timed once (the ladder's own run).
+
+Iteration counts of the 1D profiles are sensitive to round-off: a change of the last digits of the
+load, or the uniform compression that a thick confined layer keeps when it is reduced to the
+half-space, moves them by up to +-30 % (the answer does not move). The per-iteration columns
+separate that from the cost of an iteration.
 
 Run ``python benchmarks/bench_friction.py --help``.
 """
@@ -114,7 +121,10 @@ class Bench:
         a, heights = self.args, self.surface(dim, n)
         E_star = a.E / (1 - nu**2)
         p = target * E_star * a.rms_slope / 2  # A ~ 2 p / (E* h'_rms) on a half-space at small contact
-        area = lambda p: solve_once(heights, p=p, nu=nu, q0h=q0h, mu=0.0, tol=a.calibration_tol, args=a)[0]["contact_area"]  # noqa: E731
+
+        def area(p):
+            return solve_once(heights, p=p, nu=nu, q0h=q0h, mu=0.0, tol=a.calibration_tol, args=a)[0]["contact_area"]
+
         A, slope, prev = area(p), 1.0, None
         for _ in range(a.calibration_steps):
             if abs(A / target - 1) <= a.calibration_rtol or A <= 0 or A >= 1:
@@ -127,27 +137,41 @@ class Bench:
         self.loads[key] = (p, A)
         return p, A
 
-    def measure(self, dim, n, *, p, nu, q0h, mu, tol=None) -> dict:
-        """Median times of one configuration after a warm-up solve (cached)."""
+    def measure(self, dim, n, configs: list[dict], *, reuse: bool = False) -> list[dict]:
+        """Median times of several configurations (``dict(p=, nu=, q0h=, mu=)``) on one surface, timed
+        interleaved (one solve of each in turn, ``repeats`` rounds) after one warm-up solve of each, so
+        that a change of the machine's load hits all of them alike. ``reuse``: take a configuration
+        measured before from the cache (measurement 3 reuses measurement 2's layer)."""
         a = self.args
-        tol = a.tol if tol is None else tol
-        key = (dim, n, p, nu, q0h, mu, tol)
-        if key in self.timed:
-            return self.timed[key]
+        keys = [(dim, n, c["p"], c["nu"], c["q0h"], c["mu"], a.tol) for c in configs]
+        if reuse and all(k in self.timed for k in keys):
+            return [self.timed[k] for k in keys]
         heights = self.surface(dim, n)
-        warm, _ = solve_once(heights, p=p, nu=nu, q0h=q0h, mu=mu, tol=tol, args=a)
-        reps = max(a.repeats, min(MAX_REPEATS, math.ceil(a.min_time / max(warm["call_s"], 1e-6))))
-        runs = [solve_once(heights, p=p, nu=nu, q0h=q0h, mu=mu, tol=tol, args=a)[0] for _ in range(reps)]
-        last = runs[-1]
-        res = dict(last, call_s=float(np.median([r["call_s"] for r in runs])),
-                   wall_s=float(np.median([r["wall_s"] for r in runs])),
-                   calls_s=[r["call_s"] for r in runs], walls_s=[r["wall_s"] for r in runs], repeats=reps,
-                   converged=all(r["converged"] for r in runs), warmup_call_s=warm["call_s"])
-        self.timed[key] = res
-        self.log(f"    {dim}D N={n} nu={nu} q0h={q0h} mu={mu} p={p:.5g}: {res['call_s']:.4f} s (solver "
-                 f"{res['wall_s']:.4f} s, x{reps}), {res['iterations']} it / {res['outer_iterations']} outer, "
-                 f"A={res['contact_area']:.4f}{'' if res['converged'] else ' NOT CONVERGED'}")
-        return res
+        warm = [solve_once(heights, **c, tol=a.tol, args=a)[0] for c in configs]
+        slowest = max(w["call_s"] for w in warm)
+        reps = max(a.repeats, min(MAX_REPEATS, math.ceil(a.min_time / max(slowest, 1e-6))))
+        runs = [[] for _ in configs]
+        for _ in range(reps):
+            for i, c in enumerate(configs):
+                runs[i].append(solve_once(heights, **c, tol=a.tol, args=a)[0])
+        out = []
+        for key, c, w, rs in zip(keys, configs, warm, runs):
+            res = dict(rs[-1], call_s=float(np.median([r["call_s"] for r in rs])),
+                       wall_s=float(np.median([r["wall_s"] for r in rs])),
+                       calls_s=[r["call_s"] for r in rs], walls_s=[r["wall_s"] for r in rs], repeats=reps,
+                       converged=all(r["converged"] for r in rs), warmup_call_s=w["call_s"],
+                       iterations_all_equal=len({r["iterations"] for r in rs}) == 1)
+            self.timed[key] = res
+            out.append(res)
+            self.log(f"    {dim}D N={n} nu={c['nu']} q0h={c['q0h']} mu={c['mu']} p={c['p']:.5g}: {res['call_s']:.4f} s "
+                     f"(solver {res['wall_s']:.4f} s, x{reps}), {res['iterations']} it / {res['outer_iterations']} "
+                     f"outer, A={res['contact_area']:.4f}{'' if res['converged'] else ' NOT CONVERGED'}")
+        return out
+
+
+def per_iteration_ratio(m: dict, base: dict) -> float:
+    """Solver time per (inner) iteration of ``m`` over that of ``base``."""
+    return (m["wall_s"] / max(m["iterations"], 1)) / (base["wall_s"] / max(base["iterations"], 1))
 
 
 def cases(args):
@@ -167,27 +191,33 @@ def bench_friction(bench: Bench) -> list[dict]:
             nu, q0h = scene_nu(args, scene), SCENES[scene][1]
             for target in args.contact:
                 p, a_cal = bench.load(dim, n, nu, q0h, target)
-                base = bench.measure(dim, n, p=p, nu=nu, q0h=q0h, mu=0.0)
-                for mu in args.frictions:
-                    m = bench.measure(dim, n, p=p, nu=nu, q0h=q0h, mu=mu)
+                base, *coupled = bench.measure(dim, n, [dict(p=p, nu=nu, q0h=q0h, mu=mu)
+                                                        for mu in [0.0] + list(args.frictions)])
+                for mu, m in zip(args.frictions, coupled):
                     rows.append({
                         "dim": dim, "n": n, "scene": scene, "coupling_kind": SCENES[scene][2], "nu": nu, "q0h": q0h,
                         "target_area": target, "mean_pressure": p, "friction": mu,
                         "frictionless": base, "frictional": m,
                         "ratio_call": m["call_s"] / base["call_s"], "ratio_wall": m["wall_s"] / base["wall_s"],
+                        "iteration_ratio": m["iterations"] / max(base["iterations"], 1),
+                        "per_iteration_ratio": per_iteration_ratio(m, base),
                     })
     return rows
 
 
 def table_friction(rows, args) -> list[str]:
     out = ["## 1. Coupled over frictionless (same scene, surface, load, tol)", "",
-           f"Target: ratio <= {args.friction_target:g}; `!` marks a ratio above it, `NC` a solve that did not converge. "
+           f"Target: ratio <= {args.friction_target:g}; `!` marks a ratio above it, `NC` a solve that did not "
+           "converge. "
            "it0: iterations of the frictionless solve; it (outer): inner iterations summed over the outer "
            "(Anderson) iterations of the coupled solve; t = median of the whole `solve` call, t_solver = "
-           "median of `attrs['wall_time']`; ratio = t_mu / t_0 (call), ratio_solver = the same of t_solver.", "",
-           "| dim | N | scene | nu | q0 h | A target | p | mu | model | it0 | it (outer) | A0 | A_mu | t0 [s] | t_mu [s] "
-           "| ratio | ratio_solver |",
-           "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
+           "median of `attrs['wall_time']`; ratio = t_mu / t_0 (call), ratio_solver = the same of t_solver = "
+           "it ratio (inner iterations over it0) x per-it (solver time per inner iteration over the frictionless "
+           "one: the outer loop's own work, W p, Anderson mixing, restarts of the inner solve).", "",
+           "| dim | N | scene | nu | q0 h | A target | p | mu | model | it0 | it (outer) | A0 | A_mu | t0 [s] "
+           "| t_mu [s] "
+           "| ratio | ratio_solver | it ratio | per-it |",
+           "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for r in rows:
         b, m = r["frictionless"], r["frictional"]
         flag = " !" if r["ratio_call"] > args.friction_target else ""
@@ -198,7 +228,8 @@ def table_friction(rows, args) -> list[str]:
             f"| {r['dim']}D | {r['n']} | {r['scene']} | {r['nu']:g} | {q0h} "
             f"| {r['target_area']:g} | {r['mean_pressure']:.4g} | {r['friction']:g} | {model} | {b['iterations']} "
             f"| {m['iterations']} ({m['outer_iterations']}) | {b['contact_area']:.4f} | {m['contact_area']:.4f} "
-            f"| {b['call_s']:.4f} | {m['call_s']:.4f} | {r['ratio_call']:.2f}{flag}{nc} | {r['ratio_wall']:.2f} |")
+            f"| {b['call_s']:.4f} | {m['call_s']:.4f} | {r['ratio_call']:.2f}{flag}{nc} | {r['ratio_wall']:.2f} "
+            f"| {r['iteration_ratio']:.2f} | {r['per_iteration_ratio']:.2f} |")
     return out
 
 
@@ -210,13 +241,14 @@ def bench_layer(bench: Bench) -> list[dict]:
     for dim, n in cases(args):
         for target in args.contact:
             p, _ = bench.load(dim, n, nu, None, target)
-            half = bench.measure(dim, n, p=p, nu=nu, q0h=None, mu=0.0)
-            for q0h in (args.layer_q0h, args.thick_q0h):
-                m = bench.measure(dim, n, p=p, nu=nu, q0h=q0h, mu=0.0)
+            q0hs = (args.layer_q0h, args.thick_q0h)
+            half, *layers = bench.measure(dim, n, [dict(p=p, nu=nu, q0h=q0h, mu=0.0) for q0h in (None,) + q0hs])
+            for q0h, m in zip(q0hs, layers):
                 rows.append({"dim": dim, "n": n, "nu": nu, "q0h": q0h, "thickness": thickness_for(q0h),
                              "target_area": target, "mean_pressure": p, "halfspace": half, "layer": m,
                              "reduced_to_halfspace": m["body"] == "half-space",
-                             "ratio_call": m["call_s"] / half["call_s"], "ratio_wall": m["wall_s"] / half["wall_s"]})
+                             "ratio_call": m["call_s"] / half["call_s"], "ratio_wall": m["wall_s"] / half["wall_s"],
+                             "per_iteration_ratio": per_iteration_ratio(m, half)})
     return rows
 
 
@@ -225,18 +257,21 @@ def table_layer(rows, args) -> list[str]:
            f"Target: ratio <= {args.layer_target:g} (`!` above it). The load is the half-space's for the target "
            "contact fraction; the layer is stiffer, so its contact is smaller and its iteration count differs. "
            f"body: `attrs['body']` (the q0 h = {args.thick_q0h:g} layer must be reduced to the half-space). "
-           "t: median of the whole call; t_solver: of `attrs['wall_time']`.", "",
+           "t: median of the whole call; t_solver: of `attrs['wall_time']`; per-it: solver time per iteration, "
+           "layer over half-space (the three bodies are timed interleaved).", "",
            "| dim | N | nu | A target | p | q0 h | body | it half | it layer | A half | A layer | t half [s] | "
-           "t layer [s] | ratio | ratio_solver |",
-           "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
+           "t layer [s] | ratio | ratio_solver | per-it |",
+           "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for r in rows:
         h, m = r["halfspace"], r["layer"]
         flag = " !" if r["ratio_call"] > args.layer_target else ""
         nc = "" if (h["converged"] and m["converged"]) else " NC"
         out.append(
             f"| {r['dim']}D | {r['n']} | {r['nu']:g} | {r['target_area']:g} | {r['mean_pressure']:.4g} | {r['q0h']:g} "
-            f"| {m['body']} | {h['iterations']} | {m['iterations']} | {h['contact_area']:.4f} | {m['contact_area']:.4f} "
-            f"| {h['call_s']:.4f} | {m['call_s']:.4f} | {r['ratio_call']:.2f}{flag}{nc} | {r['ratio_wall']:.2f} |")
+            f"| {m['body']} | {h['iterations']} | {m['iterations']} | {h['contact_area']:.4f} "
+            f"| {m['contact_area']:.4f} "
+            f"| {h['call_s']:.4f} | {m['call_s']:.4f} | {r['ratio_call']:.2f}{flag}{nc} | {r['ratio_wall']:.2f} "
+            f"| {r['per_iteration_ratio']:.2f} |")
     return out
 
 
@@ -325,7 +360,7 @@ def bench_cm(bench: Bench) -> list[dict]:
         h = np.ascontiguousarray(heights.values)
         for target in args.contact:
             p, _ = bench.load(2, n, nu, None, target)  # the half-space's load, as in measurement 2
-            ours = bench.measure(2, n, p=p, nu=nu, q0h=q0h, mu=0.0)
+            ours, = bench.measure(2, n, [dict(p=p, nu=nu, q0h=q0h, mu=0.0)], reuse=True)
             _, out = solve_once(heights, p=p, nu=nu, q0h=q0h, mu=0.0, tol=args.tol, args=args)
             _, ref = solve_once(heights, p=p, nu=nu, q0h=q0h, mu=0.0, tol=args.ref_tol, args=args, max_iter=3000)
             p_ours, p_ref = out.pressure.values, ref.pressure.values
@@ -381,20 +416,23 @@ def bench_cm(bench: Bench) -> list[dict]:
 
 def table_cm(rows, args) -> list[str]:
     out = [f"## 3. Confined layer (q0 h = {args.layer_q0h:g}, nu = {args.nu:g}) against ContactMechanics", "",
-           f"Same surface and load (the half-space's of measurement 2). error: pressure rel. L2 against contactlib at tol "
+           "Same surface and load (the half-space's of measurement 2). error: pressure rel. L2 against contactlib "
+           "at tol "
            f"{args.ref_tol:g}; ContactMechanics' tol tightened by half decades until its error <= contactlib's at tol "
            f"{args.tol:g}. nodes: contact nodes in contactlib's set only / in ContactMechanics' only; vs ref: nodes "
            "whose contact state differs from the reference's (contactlib, CM). dp L2 = |p_ours - p_CM| / |p_CM|. "
            "kernel: largest relative difference of the two Green's functions on the grid (q = 0 included). "
            f"ratio = t_contactlib (whole call) / t_CM (substrate set-up + solve), target <= {args.cm_target:g}.", "",
-           "| N | A target | p | ours it | ours error | ours t [s] | CM tol | CM it | CM error | CM t [s] | A ours | A CM "
+           "| N | A target | p | ours it | ours error | ours t [s] | CM tol | CM it | CM error | CM t [s] | A ours "
+           "| A CM "
            "| dA rel | nodes | vs ref | dp L2 | kernel | ratio | ratio_solver |",
            "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for r in rows:
         o, c = r["contactlib"], r["cm"]
         flag = " !" if r["ratio"] > args.cm_target else ""
         out.append(
-            f"| {r['n']} | {r['target_area']:g} | {r['mean_pressure']:.4g} | {o['iterations']} | {o['pressure_error']:.1e} "
+            f"| {r['n']} | {r['target_area']:g} | {r['mean_pressure']:.4g} | {o['iterations']} "
+            f"| {o['pressure_error']:.1e} "
             f"| {o['call_s']:.3f} | {c['tol']:.1e} | {c['iterations']}{'' if c['converged'] else ' NC'} "
             f"| {c['pressure_error']:.1e} | {c['time_s']:.3f} | {o['contact_area']:.6f} | {c['contact_area']:.6f} "
             f"| {r['area_rel_diff']:.1e} | {r['nodes_only_contactlib']} / {r['nodes_only_cm']} "
@@ -422,7 +460,8 @@ def machine_info(args) -> dict:
     }
     try:
         repo = Path(__file__).resolve().parent.parent
-        rev = subprocess.run(["git", "-C", str(repo), "describe", "--always", "--dirty"], capture_output=True, text=True)
+        rev = subprocess.run(["git", "-C", str(repo), "describe", "--always", "--dirty"], capture_output=True,
+                             text=True)
         info["contactlib_git"] = rev.stdout.strip() or "?"
     except OSError:
         pass
@@ -446,9 +485,11 @@ def markdown(results: dict, info: dict, args) -> str:
     out += [f"- surface: self_affine(N, hurst={args.hurst}, q_roll={args.q_roll}, q_cutoff={args.cutoff_fraction}*N, "
             f"rms_slope={args.rms_slope}, seed={args.seed}, dim=1 or 2) on the unit window (q0 = 2 pi); E={args.E}; "
             f"tol={args.tol:g}; loads calibrated per scene on frictionless solves at tol {args.calibration_tol:g} "
-            f"(contact within {100 * args.calibration_rtol:g} % of the target or {args.calibration_steps} secant steps)",
+            f"(contact within {100 * args.calibration_rtol:g} % of the target or {args.calibration_steps} secant "
+            "steps)",
             f"- time: median of {args.repeats} solves (more, up to {MAX_REPEATS}, when they take under "
-            f"{args.min_time:g} s in all) after one warm-up solve of the same configuration", ""]
+            f"{args.min_time:g} s in all) after one warm-up solve of each configuration; the configurations "
+            "compared in one row (frictionless and frictional; half-space and layers) are timed interleaved", ""]
     for name, table in (("friction", table_friction), ("layer", table_layer), ("cm", table_cm)):
         if results.get(name):
             out += table(results[name], args) + [""]
@@ -471,7 +512,8 @@ def parse(argv=None):
                     help="N of the 2D surfaces compared with ContactMechanics (about 5-15 s a solve at 512, "
                          "35-160 s at 1024 here)")
     ap.add_argument("--contact", type=float, nargs="+", default=[0.1, 0.5], help="target contact fractions")
-    ap.add_argument("--measurements", nargs="+", default=["friction", "layer", "cm"], choices=["friction", "layer", "cm"])
+    ap.add_argument("--measurements", nargs="+", default=["friction", "layer", "cm"],
+                    choices=["friction", "layer", "cm"])
     ap.add_argument("--scenes", nargs="+", default=["half-space", "confined"], choices=sorted(SCENES),
                     help="scenes of measurement 1 ('thin': q0 h = 0.1, slow: many outer iterations)")
     ap.add_argument("--frictions", type=float, nargs="+", default=[0.5, 1.0])
@@ -487,7 +529,8 @@ def parse(argv=None):
     ap.add_argument("--nu", type=float, default=0.3, help="half-space scene, measurement 2 and the CM comparison")
     ap.add_argument("--layer-nu", type=float, default=0.5, help="the layer scenes of measurement 1")
     ap.add_argument("--layer-q0h", type=float, default=1.0, help="q0 h of measurements 2 and 3")
-    ap.add_argument("--thick-q0h", type=float, default=20.0, help="q0 h of the layer that must reduce to the half-space")
+    ap.add_argument("--thick-q0h", type=float, default=20.0,
+                    help="q0 h of the layer that must reduce to the half-space")
     ap.add_argument("--E", type=float, default=1.0)
     ap.add_argument("--hurst", type=float, default=0.8)
     ap.add_argument("--q-roll", type=float, default=4.0)
