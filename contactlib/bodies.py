@@ -15,6 +15,7 @@ The choice is recorded in the dataset's attrs (``body``, ``coupling``, ``model``
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from dataclasses import dataclass
 
@@ -77,6 +78,9 @@ def body_model(grid: Grid, *, E: float, nu: float, layer: Layer | None, friction
                      model="half-space" + (", Coulomb friction coupled" if coupled else ""))
         return BodyModel(Compliance(grid, E_star=E_star, kernel=kernel, periodic=False), coupling, None, attrs)
 
+    if layer is None and friction == 0:  # the frictionless half-space: no tensor built, none held during the solve
+        attrs.update(body="half-space", coupling="none", model="half-space")
+        return BodyModel(Compliance(grid, E_star=E_star, kernel=kernel, periodic=True), None, None, attrs)
     half = surface_green_tensor(grid, E, nu)
     nonzero = grid.wavenumber() > 0
     tensor, body, note = half, "half-space", "half-space"
@@ -93,7 +97,7 @@ def body_model(grid: Grid, *, E: float, nu: float, layer: Layer | None, friction
                     f"<= {REDUCTION_FRACTION} tol, on this grid)")
             zero = zero_mode_compliance(layer.thickness, E, nu, layer.base)["normal"]
             if zero > 0:  # keep its uniform compression: penetrations from the undeformed surface
-                tensor = surface_green_tensor(grid, E, nu)
+                tensor = dataclasses.replace(half, normal=half.normal.copy())
                 tensor.normal.flat[0] = zero
     ratio = friction * np.abs(tensor.coupling[nonzero] / tensor.normal[nonzero]).max() if friction > 0 else 0.0
     coupled = ratio > limit
