@@ -29,6 +29,14 @@ from .operators import Compliance, Coupling
 REDUCTION_FRACTION = 0.1
 """A term is left out where it changes the kernel by at most this fraction of ``tol`` (relative)."""
 
+SHIFT_ABOVE = 2.0
+"""Where friction couples strongly (``max |W(q)| / K(q)`` above this: thin layers at ``q h`` below about
+``mu``), the symmetric operator of the coupled solve is ``K + |W|`` and its outer loop iterates on
+``W - |W|`` (:mod:`contactlib.solvers.coupled`). Measured on 512^2, nu = 0.5, mu = 1, 50 % contact:
+at q0 h = 0.1 (ratio 15) the plain split stalls at residual 2 and this one converges in 77 outer
+iterations; at q0 h = 0.3 (ratio 5) 38 outer iterations instead of 47; at q0 h = 1 (ratio 1.5) it
+costs 15 % more, hence the threshold."""
+
 
 @dataclass(frozen=True)
 class Layer:
@@ -102,12 +110,18 @@ def body_model(grid: Grid, *, E: float, nu: float, layer: Layer | None, friction
     ratio = friction * np.abs(tensor.coupling[nonzero] / tensor.normal[nonzero]).max() if friction > 0 else 0.0
     coupled = ratio > limit
     transfer = None if tensor is half else tensor.normal
-    compliance = Compliance(grid, E_star=E_star, kernel=kernel, periodic=True, transfer=transfer)
     coupling = None
     if coupled:
-        coupling = Coupling(grid, periodic=True, friction=friction, transfer=tensor.coupling_multiplier(grid, direction))
+        multiplier = tensor.coupling_multiplier(grid, direction)
         note += f", Coulomb friction coupled (max |W|/K = {ratio:.3g})"
+        if ratio > SHIFT_ABOVE:
+            # strong coupling: |W| joins the symmetric operator, W - |W| is what the outer loop iterates
+            transfer = tensor.normal + friction * np.abs(multiplier)
+            multiplier = multiplier - np.abs(multiplier)
+            note += ", |W| in the symmetric part"
+        coupling = Coupling(grid, periodic=True, friction=friction, transfer=multiplier)
     elif friction > 0:
         note += ", friction uncoupled (coupling vanishes)"
+    compliance = Compliance(grid, E_star=E_star, kernel=kernel, periodic=True, transfer=transfer)
     attrs.update(body=body, coupling="normal-tangential" if coupled else "none", model=note)
     return BodyModel(compliance, coupling, tensor, attrs)

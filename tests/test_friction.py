@@ -133,6 +133,53 @@ def test_coupled_solver_converges_on_hard_cases(nu, q0h, pressure):
     assert 0.0 < float(out.contact_area) <= 1.0
 
 
+def _strong_coupling_scene(q0h, mean_pressure):
+    h = contactlib.surfaces.self_affine(128, hurst=0.8, q_roll=2, q_cutoff=16, rms_slope=0.1, seed=4)
+    return dict(heights=h, E=1.0, nu=0.5, mean_pressure=mean_pressure, friction=1.0, tol=1e-10,
+                layer=contactlib.Layer(q0h / (2 * np.pi), "confined"))
+
+
+def test_strong_coupling_converges_in_2d():
+    """2D, q0 h = 0.1, nu = 0.5, mu = 1 (max |W|/K = 15): friction takes the contact from 23 % to 34 %.
+    The plain split stalls here (residual 1.5e-3 after 124 outer iterations); K + |W| converges."""
+    out = contactlib.solve(**_strong_coupling_scene(0.1, 0.3))
+    assert "|W| in the symmetric part" in out.attrs["model"]
+    assert out.attrs["converged"] == 1 and float(out.residual) <= 1e-10
+    assert 0.3 < float(out.contact_area) < 0.4
+
+
+def test_strong_coupling_split_gives_the_same_answer(monkeypatch):
+    """Where both splits converge (q0 h = 0.3, max |W|/K = 4.9, 49 % contact), K + |W| with W - |W| and
+    K with W reach the same pressure: same problem, two iterations."""
+    from contactlib import bodies
+
+    shifted = contactlib.solve(**_strong_coupling_scene(0.3, 0.1))
+    monkeypatch.setattr(bodies, "SHIFT_ABOVE", np.inf)
+    plain = contactlib.solve(**_strong_coupling_scene(0.3, 0.1))
+    assert "|W|" in shifted.attrs["model"] and "|W| in" not in plain.attrs["model"]
+    p, q = shifted.pressure.values, plain.pressure.values
+    assert np.linalg.norm(p - q) / np.linalg.norm(q) < 1e-8
+    assert float(shifted.contact_area) == float(plain.contact_area)
+
+
+@pytest.mark.parametrize("q0h", [0.63, 1.0])
+def test_thin_remote_pressure_layer_matches_its_dual(q0h):
+    """A plate-like layer (compliance up to 26x the half-space's at q0) under load control, checked
+    against the dual iteration (the gap as unknown) at the penetration found: the same mean pressure,
+    contact set and pressure. Preconditioned, the q0 h = 0.63 solve stalled at residual 4e-2
+    (PRECONDITION_SOFTENING)."""
+    n = 4096
+    h = contactlib.surfaces.self_affine(n, hurst=0.8, q_roll=2, q_cutoff=n // 8, rms_slope=0.1, seed=4, dim=1)
+    layer = contactlib.Layer(q0h / (2 * np.pi), "remote_pressure")
+    load = contactlib.solve(h, E=1.0, nu=0.3, mean_pressure=0.01, layer=layer, tol=1e-10)
+    dual = contactlib.solve(h, E=1.0, nu=0.3, penetration=float(load.penetration), layer=layer, tol=1e-10)
+    assert dual.attrs["solver"] == "polonsky-keer-dual"
+    assert 0.15 < float(load.contact_area) < 0.25
+    assert float(dual.mean_pressure) == pytest.approx(0.01, rel=1e-8)
+    np.testing.assert_array_equal(dual.pressure.values > 0, load.pressure.values > 0)
+    assert np.linalg.norm(dual.pressure - load.pressure) / np.linalg.norm(load.pressure) < 1e-7
+
+
 def test_2d_sliding_direction_rotates_with_the_surface():
     """The same scene turned by 90 degrees, sliding along y, gives the transposed answer."""
     h = contactlib.surfaces.self_affine(64, hurst=0.8, q_roll=1, q_cutoff=8, rms_slope=0.13, seed=2).values

@@ -104,7 +104,8 @@ def solve_polonsky_keer(
     # converges, slowly; contactlib.solve runs the dual problem there instead (.dual: the gap as
     # unknown, its mean fixed, preconditioned). A definite compliance (non-periodic, or a confined
     # compressible layer's) has no such mode, and the preconditioner works under either control.
-    precondition = precondition and (load_control or operator.definite)
+    # A plate-like body (operator.preconditionable False) stalls preconditioned: see PRECONDITION_SOFTENING.
+    precondition = precondition and (load_control or operator.definite) and operator.preconditionable
     hp = fz.as2d(heights - heights.max())  # <= 0; gap = K p - hp - approach
     scale = height_scale(heights)
     n = heights.size

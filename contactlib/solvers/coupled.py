@@ -19,7 +19,12 @@ half-space but reaches ``1.5 mu / (q h)`` on a thin incompressible confined laye
 fixed point diverges. On a fixed contact set the map is linear with an imaginary spectrum
 (``K^-1 W`` is similar to a skew matrix), so Anderson mixing (Walker & Ni, SIAM J. Numer. Anal. 49,
 2011: GMRES on the fixed point) converges where plain or damped iteration cannot: its few slow
-directions are the long waves where ``rho > 1``. Each inner solve is warm-started from the last one,
+directions are the long waves where ``rho > 1``. Where ``rho`` is large (above
+:data:`contactlib.bodies.SHIFT_ABOVE`) the body model splits differently: ``K + |W|`` (still a
+symmetric definite multiplier) is the inner operator and ``W - |W|`` the outer part. At full contact
+the eigenvalues of the outer map, ``(i w - |w|) / (k + |w|)``, then stay in the disc of radius
+``sqrt(2)`` with real part <= 0 however large ``|w| / k``, instead of ``i w / k`` on the imaginary axis:
+Anderson converges where it stalled with the plain split (q0 h = 0.1, mu = 1). Each inner solve is warm-started from the last one,
 with a tolerance tightening with the outer residual, so late inner solves take a few iterations.
 
 The residual is :func:`.contact_residual` of the true gap ``(K + W) y - h - d`` (one application of
