@@ -16,6 +16,10 @@ include: "workflow/rules/sweep.smk"
 include: "workflow/rules/figures.smk"
 
 
+onstart:
+    record_run()
+
+
 rule all:
     input:
         expand("results/{study}.nc", study=STUDIES),

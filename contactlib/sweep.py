@@ -385,7 +385,8 @@ def open_client(*, scheduler_address: str | None = None, n_workers: int = 2, thr
                 log: Callable[[str], None] | None = None):
     """A ``distributed.Client`` on an existing scheduler, or on a new ``LocalCluster`` of processes.
 
-    The dashboard address is logged (it is served only where ``bokeh`` is installed).
+    The dashboard address is logged; it is served where ``bokeh`` is installed (the ``workflow``
+    extra brings it), on Dask's usual port 8787 when that is free, another port otherwise.
     """
     from distributed import Client, LocalCluster
 
@@ -396,7 +397,7 @@ def open_client(*, scheduler_address: str | None = None, n_workers: int = 2, thr
             yield client
         return
     with LocalCluster(n_workers=n_workers, threads_per_worker=threads_per_worker, processes=True,
-                      dashboard_address=":0") as cluster, Client(cluster) as client:
+                      dashboard_address=":8787") as cluster, Client(cluster) as client:
         log(f"dask: LocalCluster {n_workers} workers x {threads_per_worker} threads, "
             f"dashboard {client.dashboard_link}")
         yield client

@@ -2,12 +2,15 @@
 
 import functools
 import json
+import os
 import sys
 
-from contactlib import studies, sweep
+from contactlib import lifeline, studies, sweep
 
 
 def main(sm):
+    # not one second longer than Snakemake: killed, it must not leave this sweep and its workers running
+    tie = lifeline.exit_with_parent()
     spec, material, solver, dask = sm.params.spec, sm.params.material, sm.params.solver, dict(sm.params.dask)
     log_file = open(sm.log[0], "w")
 
@@ -15,6 +18,7 @@ def main(sm):
         for stream in (log_file, sys.stderr):
             print(f"{spec['name']}: {line}", file=stream, flush=True)
 
+    emit(f"process {os.getpid()} exits with its parent {os.getppid()} ({tie})")
     study = studies.STUDIES[spec["name"]]
     solver = dict(solver)
     path_dim = study.get("path_dim") if solver.pop("warm_start") else None

@@ -1,0 +1,116 @@
+"""Recovery from a hard kill: no orphaned study process, and the plain `snakemake --cores 2` finishes the run.
+
+A study of 24 points at 512^2 (about 15 s) is started under Snakemake, which is SIGKILLed once two
+paths are checkpointed. Every process of that run is tracked by process id (the descendants of the
+snakemake process, read from /proc before the kill), not by name.
+"""
+
+import os
+import shutil
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+import pytest
+import xarray as xr
+import yaml
+
+ROOT = Path(__file__).resolve().parents[1]
+TARGET = "results/area_load.nc"
+
+pytestmark = [pytest.mark.slow,
+              pytest.mark.skipif(not Path("/proc/self/stat").exists(), reason="tracks processes through /proc")]
+
+
+def _workdir(root: Path) -> Path:
+    root.mkdir()
+    shutil.copy(ROOT / "Snakefile", root / "Snakefile")
+    shutil.copytree(ROOT / "workflow", root / "workflow")
+    config = yaml.safe_load((ROOT / "tests" / "data" / "tiny_config.yaml").read_text())
+    study = config["studies"]["area_load"]
+    study["quick"] = {"constants": {"q_cutoff": 32},
+                      "grid": {"hurst": [0.5, 0.8], "n": [512], "seed": [0, 1, 2], "reduced_pressure": [0.02, 0.1]}}
+    (root / "kill.yaml").write_text(yaml.safe_dump({**config, "studies": {"area_load": study}}))
+    return root
+
+
+def _command(**kwargs):
+    # the README's command, on one target and the test's config
+    return subprocess.Popen([sys.executable, "-m", "snakemake", TARGET, "--cores", "2", "--configfile", "kill.yaml"],
+                            stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, **kwargs)
+
+
+def _parents() -> dict[int, list[int]]:
+    children: dict[int, list[int]] = {}
+    for entry in Path("/proc").iterdir():
+        if entry.name.isdigit():
+            try:
+                ppid = int((entry / "stat").read_text().rsplit(")", 1)[1].split()[1])
+            except (OSError, IndexError, ValueError):
+                continue
+            children.setdefault(ppid, []).append(int(entry.name))
+    return children
+
+
+def _descendants(pid: int) -> list[int]:
+    children, found, todo = _parents(), [], [pid]
+    while todo:
+        kids = children.get(todo.pop(), [])
+        found += kids
+        todo += kids
+    return found
+
+
+def _alive(pid: int) -> bool:
+    try:
+        return (Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()[0]) != "Z"
+    except OSError:
+        return False
+
+
+def _finish(work: Path) -> str:
+    proc = _command(cwd=work)
+    out, _ = proc.communicate(timeout=300)
+    assert proc.returncode == 0, out[-3000:]
+    return out
+
+
+def test_sigkill_of_snakemake_leaves_no_process_and_one_command_finishes(tmp_path):
+    clean, killed = _workdir(tmp_path / "clean"), _workdir(tmp_path / "killed")
+    proc = _command(cwd=killed, start_new_session=True)
+    checkpoints = killed / "results" / "checkpoints" / "area_load"
+    try:
+        start = time.monotonic()
+        while len(list(checkpoints.glob("[!.]*"))) < 2:
+            assert proc.poll() is None, proc.stdout.read()[-3000:]
+            assert time.monotonic() - start < 120, "no checkpoint within 2 minutes"
+            time.sleep(0.05)
+        run = _descendants(proc.pid)
+        assert run, "snakemake had no child process to track"
+        os.kill(proc.pid, signal.SIGKILL)
+        proc.wait()
+        start = time.monotonic()
+        while any(_alive(pid) for pid in run) and time.monotonic() - start < 10:
+            time.sleep(0.1)
+        left = [pid for pid in run if _alive(pid)]
+        assert not left, f"processes of the killed run still alive after 10 s: {left}"
+    finally:
+        if proc.poll() is None:
+            os.killpg(proc.pid, signal.SIGKILL)
+            proc.wait()
+    assert not (killed / TARGET).exists()  # killed before the dataset: no orphan wrote it
+    assert list((killed / ".snakemake" / "locks").glob("*.lock")), "the kill should have left Snakemake's lock"
+
+    resumed = _finish(killed)
+    assert "released the lock of snakemake run" in resumed
+    assert resumed.count(" cached ") >= 2  # finished points came back from the checkpoints
+    _finish(clean)
+    a, b = xr.load_dataset(killed / TARGET), xr.load_dataset(clean / TARGET)
+    assert set(a.data_vars) == set(b.data_vars)
+    for name in a.data_vars:
+        if name != "wall_time":
+            np.testing.assert_array_equal(a[name].values, b[name].values, err_msg=name)
+    assert int((a.status != 0).sum()) == 0
