@@ -7,13 +7,15 @@ from contactlib import studies
 
 validate(config, schema="../schemas/config.schema.yaml")
 
-STUDIES = list(config["studies"])
+# one dataset per study, except the studies of measured files: one dataset per file (rules/measured.smk)
+STUDIES = [s for s in config["studies"] if not studies.STUDIES[s].get("per_surface")]
+MEASURED_STUDIES = [s for s in config["studies"] if studies.STUDIES[s].get("per_surface")]
 SURFACE_STUDIES = [s for s in STUDIES if "surface_keys" in studies.STUDIES[s]]
 TABLES = [f"results/{s}_table.md" for s in STUDIES if s in config.get("tables", {})]
 
 
 wildcard_constraints:
-    study="|".join(STUDIES),
+    study="|".join(STUDIES + MEASURED_STUDIES) or "(?!)",
 
 
 def study_spec(wildcards):
