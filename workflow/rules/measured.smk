@@ -1,37 +1,6 @@
 # Measured topography files: each listed file is read once into a labelled surface, swept, and plotted.
 
 
-def measured_entries(study):
-    """The study's surface entries by name (names must be unique: each names a dataset and a figure)."""
-    entries = config["studies"][study]["surfaces"]
-    names = [e["name"] for e in entries]
-    if len(set(names)) != len(names):
-        raise ValueError(f"studies/{study}/surfaces: names must be unique, got {names}")
-    return {e["name"]: e for e in entries}
-
-
-MEASURED = {study: measured_entries(study) for study in MEASURED_STUDIES}
-MEASURED_TARGETS = [
-    target
-    for study, entries in MEASURED.items()
-    for surface in entries
-    for target in (f"results/{study}/{surface}.nc", f"results/figures/{study}/{surface}.png")
-]
-EXAMPLES = list(config.get("example_topographies", {}))
-
-
-def measured_entry(wildcards):
-    return MEASURED[wildcards.study][wildcards.surface]
-
-
-def measured_spec(wildcards):
-    """study_spec plus the prepared surface file the points read."""
-    spec = study_spec(wildcards)
-    spec["constants"]["surface_file"] = f"results/surfaces/{wildcards.study}/{wildcards.surface}.nc"
-    spec["surface"] = wildcards.surface
-    return spec
-
-
 rule write_example_topography:
     output:
         "results/example_topographies/{example}.txt",
