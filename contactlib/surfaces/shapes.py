@@ -88,4 +88,5 @@ def spheres(n: int, *, length: float = 1.0, radius, summit_height=0.0, centers=N
             d2 = d2 + (dx[:, None] ** 2 if (dim == 2 and axis == 0) else dx[None, :] ** 2 if dim == 2 else dx**2)
         cap = np.where(d2 < R**2, z - R + np.sqrt(np.clip(R**2 - d2, 0, None)), -np.inf)
         h = np.maximum(h, cap)
-    return _as_dataarray(h, grid, length_unit, generator="contactlib.surfaces.spheres", periodic=1, asperities=k, seed=seed)
+    return _as_dataarray(h, grid, length_unit, generator="contactlib.surfaces.spheres", periodic=1, asperities=k,
+                         seed=seed)
