@@ -14,6 +14,7 @@ include: "workflow/rules/common.smk"
 include: "workflow/rules/surfaces.smk"
 include: "workflow/rules/sweep.smk"
 include: "workflow/rules/figures.smk"
+include: "workflow/rules/measured.smk"
 
 
 onstart:
@@ -25,3 +26,4 @@ rule all:
         expand("results/{study}.nc", study=STUDIES),
         expand("results/figures/{study}.png", study=STUDIES),
         TABLES,
+        MEASURED_TARGETS,

@@ -2,7 +2,7 @@
 
 The public API: :func:`solve` for normal contact on a half-space or :class:`Layer`, with Coulomb
 friction, :mod:`contactlib.surfaces` to
-generate surfaces, :mod:`contactlib.analysis` to measure them and their contact fields,
+generate surfaces or read measured ones (``surfaces.read``), :mod:`contactlib.analysis` to measure them and their contact fields,
 :mod:`contactlib.accuracy` for the measured grid and tolerance rules
 (``solve(..., target_error=...)``).
 """

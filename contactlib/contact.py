@@ -80,6 +80,16 @@ def grid_of(heights, length=None) -> tuple[np.ndarray, Grid, tuple[str, ...], di
     return np.ascontiguousarray(values), grid, dims, coords
 
 
+def periodic_of(heights, periodic: bool | None) -> bool:
+    """``periodic`` if given, else what a DataArray's ``attrs['periodic']`` says (a measured surface from
+    :func:`contactlib.surfaces.read` is non-periodic unless its file or reader said so), else True."""
+    if periodic is not None:
+        return bool(periodic)
+    if isinstance(heights, xr.DataArray) and "periodic" in heights.attrs:
+        return bool(heights.attrs["periodic"])
+    return True
+
+
 def _lengths(length, ndim: int) -> tuple[float, ...]:
     lengths = tuple(float(v) for v in np.broadcast_to(np.asarray(length, dtype=float), (ndim,)))
     for v in lengths:
@@ -109,7 +119,7 @@ def solve(
     nu: float,
     mean_pressure: float | None = None,
     penetration: float | None = None,
-    periodic: bool = True,
+    periodic: bool | None = None,
     tol: float | None = None,
     max_iter: int = 10_000,
     kernel: str = "spectral",
@@ -140,8 +150,10 @@ def solve(
         Periodic displacements are zero-mean (the q = 0 mode of a half-space is infinite), so the
         approach is measured against the mean deformed plane; beyond full contact it does not fix
         the load and is refused.
-    periodic : bool
-        Periodic window (default) or an isolated footprint (zero padding, free boundary).
+    periodic : bool, optional
+        Periodic window or an isolated footprint (zero padding, free boundary). Default: the heights'
+        ``attrs['periodic']`` where a DataArray has it (a measured surface from
+        :func:`contactlib.surfaces.read` is non-periodic unless its file says otherwise), else periodic.
     tol : float, optional
         Target of the scale-free residual (:func:`contactlib.solvers.contact_residual`); default
         1e-8, or the rule of ``target_error``.
@@ -201,6 +213,7 @@ def solve(
     >>> 0 < float(out.contact_area) < 1
     True
     """
+    periodic = periodic_of(heights, periodic)
     setup = _setup(heights, E=E, nu=nu, mean_pressure=mean_pressure, penetration=penetration, periodic=periodic,
                    tol=tol, max_iter=max_iter, kernel=kernel, method=method, length=length,
                    initial_pressure=initial_pressure, target_error=target_error, layer=layer, friction=friction,
@@ -221,7 +234,7 @@ def solve_tolerances(
     nu: float,
     mean_pressure: float | None = None,
     penetration: float | None = None,
-    periodic: bool = True,
+    periodic: bool | None = None,
     max_iter: int = 10_000,
     kernel: str = "spectral",
     length=None,
@@ -258,6 +271,7 @@ def solve_tolerances(
         raise ValueError("tols must hold at least one tolerance")
     for t in tols:
         _check_tolerance(t, "tols")
+    periodic = periodic_of(heights, periodic)
     setup = _setup(heights, E=E, nu=nu, mean_pressure=mean_pressure, penetration=penetration, periodic=periodic,
                    tol=min(tols), max_iter=max_iter, kernel=kernel, method="cg", length=length,
                    initial_pressure=initial_pressure, target_error=None, layer=None, friction=0.0,

@@ -72,3 +72,28 @@ def test_solve_with_layer_and_friction_matches_api(tmp_path):
         assert o.attrs["layer_base"] == "confined" and o.attrs["coupling"] == "normal-tangential"
     assert main(["solve", str(surf), "--E", "1.0", "--nu", "0.3", "--mean-pressure", "0.01", "--thickness", "-1",
                  "-o", str(out)]) == 2
+
+
+def test_surface_from_a_measured_file_and_solve_reads_it_directly(tmp_path):
+    h = contactlib.surfaces.self_affine(64, length=1e-3, hurst=0.7, q_roll=2, q_cutoff=16, rms_slope=0.1, seed=5)
+    matrix, surf, direct, via = (tmp_path / n for n in ("m.txt", "s.nc", "direct.nc", "via.nc"))
+    np.savetxt(matrix, h.values.T * 1e6, fmt="%.17g")  # micrometres, one row per y
+    file_args = ["--length", "1000", "--unit", "um", "--periodic", "--detrend", "mean"]
+    assert main(["surface", "--from", str(matrix), *file_args, "-o", str(surf)]) == 0
+    api = contactlib.surfaces.read(matrix, length=1000, unit="um", periodic=True, detrend="mean")
+    with xr.open_dataset(surf) as s:
+        assert s.height.values.tobytes() == api.values.tobytes()
+        assert s.height.attrs["source_file"] == "m.txt" and s.height.attrs["height_unit"] == "um"
+        assert s.height.attrs["detrend"] == "mean" and s.height.attrs["periodic"] == 1
+        assert s.x.attrs["units"] == "m" and float(s.x[1]) == 1e-3 / 64
+    load = ["--E", "1e7", "--nu", "0.5", "--mean-pressure", "1e4"]
+    assert main(["solve", str(matrix), *file_args, *load, "-o", str(direct)]) == 0
+    assert main(["solve", str(surf), *load, "-o", str(via)]) == 0  # a .nc file is not detrended again
+    reference = contactlib.solve(api, E=1e7, nu=0.5, mean_pressure=1e4)
+    with xr.open_dataset(direct) as a, xr.open_dataset(via) as b:
+        for o in (a, b):
+            np.testing.assert_array_equal(o.pressure.values, reference.pressure.values)
+            assert o.attrs["periodic"] == 1
+    assert main(["solve", str(matrix), "--unit", "um", *load, "-o", str(tmp_path / "x.nc")]) == 2  # no size
+    assert not (tmp_path / "x.nc").exists()
+    assert main(["surface", "--n", "32", "-o", str(tmp_path / "y.nc")]) == 2  # neither --from nor a spectrum

@@ -1,5 +1,6 @@
 """The Snakemake workflow: lint, dry runs, config validation, and one tiny end-to-end run (slow)."""
 
+import hashlib
 import shutil
 import subprocess
 import sys
@@ -8,6 +9,8 @@ from pathlib import Path
 import pytest
 import xarray as xr
 import yaml
+
+import contactlib
 
 ROOT = Path(__file__).resolve().parents[1]
 TINY = ROOT / "tests" / "data" / "tiny_config.yaml"
@@ -115,3 +118,34 @@ def test_tiny_end_to_end_run_and_report(workdir):
     report = snakemake(workdir, "--configfile", "tiny.yaml", "--report", "results/report.html", timeout=300)
     assert report.returncode == 0, report.stderr[-3000:]
     assert (results / "report.html").stat().st_size > 10_000
+
+
+def test_measured_surface_study_end_to_end(workdir):
+    """The study of measured files on a text matrix the workflow writes itself; none by default."""
+    default = snakemake(workdir, "-n")
+    assert default.returncode == 0 and "run_measured_study" not in default.stdout  # empty list: no jobs
+    target = "results/figures/measured_area_load/demo.png"
+    run = snakemake(workdir, "--cores", "2", target, "--configfile", "workflow/config.measured.yaml", timeout=300)
+    assert run.returncode == 0, run.stdout[-3000:] + run.stderr[-3000:]
+    results = workdir / "results"
+    source = results / "example_topographies" / "demo.txt"
+    surface = contactlib.surfaces.read(source, length=100.0, unit="um", periodic=True, detrend="mean")
+    with xr.open_dataset(results / "surfaces" / "measured_area_load" / "demo.nc") as s:
+        assert s.height.values.tobytes() == surface.values.tobytes()  # read once, the same bits
+    with xr.open_dataset(results / "measured_area_load" / "demo.nc") as ds:
+        assert dict(ds.sizes) == {"reduced_pressure": 4} and (ds.status == 0).all()
+        for name in list(ds.data_vars) + list(ds.coords):
+            assert ds[name].attrs.get("units") and ds[name].attrs.get("long_name"), name
+        assert ds.attrs["source_file"] == "demo.txt" and ds.attrs["source_format"] == "matrix"
+        assert ds.attrs["source_sha256"] == hashlib.sha256(source.read_bytes()).hexdigest()
+        assert ds.attrs["detrend"] == "mean" and ds.attrs["height_unit"] == "um" and ds.attrs["periodic"] == 1
+        assert yaml.safe_load(ds.attrs["length"]) == [1e-4, 1e-4] and ds.attrs["fill"] == "none"
+        # the rms slope the loads are scaled by is the surface's; kappa as for the synthetic area_load study
+        assert float(abs(ds.rms_slope - contactlib.analysis.rms_slope(surface)).max()) == 0.0
+        assert 1.5 < float(ds.kappa.mean()) < 3.5
+    assert (workdir / target).stat().st_size > 10_000
+    bad = yaml.safe_load((workdir / "workflow" / "config.measured.yaml").read_text())
+    bad["studies"]["measured_area_load"]["surfaces"][0]["unit"] = "furlong"
+    (workdir / "bad_measured.yaml").write_text(yaml.safe_dump(bad))
+    out = snakemake(workdir, "-n", target, "--configfile", "bad_measured.yaml")
+    assert out.returncode != 0 and "'furlong' is not one of" in out.stdout + out.stderr

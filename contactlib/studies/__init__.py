@@ -6,8 +6,10 @@ request, small labelled fields). :data:`STUDIES` maps a study name to its point 
 shapes it plans, and optionally ``path_dim`` (a load path walked with warm starts) or ``group_dims``
 (names whose points share one task and its in-process caches, e.g. the rough reference of
 ``speed_vs_error``), ``ladder_dim``: a swept name whose values are also passed whole as
-``<name>_ladder`` (``speed_vs_error`` solves once for every ``tol``), and ``surface_keys`` (the
-parameters of the seeded surfaces the workflow writes beside the study).
+``<name>_ladder`` (``speed_vs_error`` solves once for every ``tol``), ``surface_keys`` (the
+parameters of the seeded surfaces the workflow writes beside the study), ``dataset_attrs`` (a function of
+the constants giving attrs the dataset carries and the checkpoints depend on, e.g. a measured file's
+checksum) and ``per_surface`` (one dataset per measured surface file listed in the study's config).
 
 Adding a study: write ``contactlib/studies/<name>.py`` exposing ``STUDY`` (its entry of
 :data:`STUDIES`: at least ``point`` and ``fft_shapes``) and ``VARIABLES`` (labels of the names only
@@ -35,12 +37,13 @@ from .anisotropy import anisotropy_point
 from .area_load import PERSSON_KAPPA, PUBLISHED_KAPPA_RANGE, area_load_point
 from .fig5_friction_area import friction_area_point
 from .fig6a_interlocking import interlocking_point
+from .measured_area_load import measured_area_load_point
 from .speed_vs_error import (REFERENCE_FLOOR, REFERENCE_MAX_ITER, SCENES, rough_master, rough_reference,
                              speed_error_point, speed_error_shapes)
 from .validation import validation_point
 
 STUDY_MODULES = ("validation", "area_load", "anisotropy", "speed_vs_error", "fig5_friction_area",
-                 "fig6a_interlocking")
+                 "fig6a_interlocking", "measured_area_load")
 """The study modules of this package, in registry order; each module's name is its study's name."""
 
 
@@ -64,7 +67,7 @@ STUDIES, STUDY_VARIABLES = _registry(STUDY_MODULES)
 
 __all__ = ["STUDIES", "STUDY_VARIABLES", "STUDY_MODULES", "add_error_estimate", "study_surfaces", "rough_surface",
            "validation_point", "area_load_point", "anisotropy_point", "speed_error_point", "speed_error_shapes",
-           "friction_area_point", "interlocking_point",
+           "friction_area_point", "interlocking_point", "measured_area_load_point",
            "rough_master", "rough_reference", "SCENES", "REFERENCE_FLOOR", "REFERENCE_MAX_ITER", "PERSSON_KAPPA",
            "PUBLISHED_KAPPA_RANGE"]
 

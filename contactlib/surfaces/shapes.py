@@ -37,7 +37,7 @@ def wavy(n: int, *, length: float = 1.0, amplitude: float, wavelengths: int = 1,
     h = amplitude * np.cos(q * xs[0])
     if dim == 2:
         h = h[:, None] * np.cos(q * xs[1])[None, :]
-    return _as_dataarray(h, grid, length_unit, generator="contactlib.surfaces.wavy", amplitude=amplitude,
+    return _as_dataarray(h, grid, length_unit, generator="contactlib.surfaces.wavy", periodic=1, amplitude=amplitude,
                          wavelength=length / wavelengths)
 
 
@@ -88,4 +88,5 @@ def spheres(n: int, *, length: float = 1.0, radius, summit_height=0.0, centers=N
             d2 = d2 + (dx[:, None] ** 2 if (dim == 2 and axis == 0) else dx[None, :] ** 2 if dim == 2 else dx**2)
         cap = np.where(d2 < R**2, z - R + np.sqrt(np.clip(R**2 - d2, 0, None)), -np.inf)
         h = np.maximum(h, cap)
-    return _as_dataarray(h, grid, length_unit, generator="contactlib.surfaces.spheres", asperities=k, seed=seed)
+    return _as_dataarray(h, grid, length_unit, generator="contactlib.surfaces.spheres", periodic=1, asperities=k,
+                         seed=seed)

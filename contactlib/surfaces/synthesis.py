@@ -105,8 +105,9 @@ def self_affine(
     dims = ("x", "y")[:dim]
     coords = {d: (d, c, attrs_for(d, length=length_unit)) for d, c in zip(dims, grid.coordinates())}
     attrs = attrs_for("height", length=length_unit)
-    attrs.update(generator="contactlib.surfaces.self_affine", hurst=hurst, q_low=q_low, q_roll=q_roll,
-                 q_cutoff=q_cutoff, seed=seed, anisotropy=anisotropy, angle=angle, length=float(length), synthesis=synthesis,
+    attrs.update(generator="contactlib.surfaces.self_affine", periodic=1, hurst=hurst, q_low=q_low, q_roll=q_roll,
+                 q_cutoff=q_cutoff, seed=seed, anisotropy=anisotropy, angle=angle, length=float(length),
+                 synthesis=synthesis,
                  normalised_by="rms_height" if rms_height is not None else "rms_slope", target=float(target))
     return xr.DataArray(heights, dims=dims, coords=coords, name="height", attrs=attrs)
 

@@ -57,13 +57,15 @@ def release_stale_lock():
 
 release_stale_lock()
 
-STUDIES = list(config["studies"])
+# one dataset per study, except the studies of measured files: one dataset per file (rules/measured.smk)
+STUDIES = [s for s in config["studies"] if not studies.STUDIES[s].get("per_surface")]
+MEASURED_STUDIES = [s for s in config["studies"] if studies.STUDIES[s].get("per_surface")]
 SURFACE_STUDIES = [s for s in STUDIES if "surface_keys" in studies.STUDIES[s]]
 TABLES = [f"results/{s}_table.md" for s in STUDIES if s in config.get("tables", {})]
 
 
 wildcard_constraints:
-    study="|".join(STUDIES),
+    study="|".join(STUDIES + MEASURED_STUDIES) or "(?!)",
 
 
 def study_spec(wildcards):
@@ -87,3 +89,34 @@ def sweep_threads(wildcards):
 
 def surfaces_of(study):
     return f"results/surfaces/{study}.nc" if study in SURFACE_STUDIES else []
+
+
+def measured_entries(study):
+    """The study's surface entries by name (names must be unique: each names a dataset and a figure)."""
+    entries = config["studies"][study]["surfaces"]
+    names = [e["name"] for e in entries]
+    if len(set(names)) != len(names):
+        raise ValueError(f"studies/{study}/surfaces: names must be unique, got {names}")
+    return {e["name"]: e for e in entries}
+
+
+MEASURED = {study: measured_entries(study) for study in MEASURED_STUDIES}
+MEASURED_TARGETS = [
+    target
+    for study, entries in MEASURED.items()
+    for surface in entries
+    for target in (f"results/{study}/{surface}.nc", f"results/figures/{study}/{surface}.png")
+]
+EXAMPLES = list(config.get("example_topographies", {}))
+
+
+def measured_entry(wildcards):
+    return MEASURED[wildcards.study][wildcards.surface]
+
+
+def measured_spec(wildcards):
+    """study_spec plus the prepared surface file the points read."""
+    spec = study_spec(wildcards)
+    spec["constants"]["surface_file"] = f"results/surfaces/{wildcards.study}/{wildcards.surface}.nc"
+    spec["surface"] = wildcards.surface
+    return spec

@@ -31,18 +31,19 @@ def main(sm):
               "dask": dask}
     # a swept nu is a coordinate, not a global attribute
     scene = {} if "nu" in spec["grid"] else {"nu": material["nu"], "E_star": material["E"] / (1 - material["nu"] ** 2)}
+    inputs = study["dataset_attrs"](constants) if "dataset_attrs" in study else {}  # e.g. a measured file's checksum
     with sweep.open_client(**dask, log=emit) as client:
         ds = sweep.run_grid(
             functools.partial(study["point"], **constants),
             spec["grid"],
             client=client,
             checkpoint_dir=sm.params.checkpoints,
-            fingerprint=json.dumps(constants, sort_keys=True),
+            fingerprint=json.dumps({**constants, **inputs}, sort_keys=True),
             fft_shapes=study["fft_shapes"](spec["grid"], constants),
             labels=studies.STUDY_VARIABLES,
             attrs={"title": spec["title"], "source": f"contactlib.studies.{study['point'].__name__}",
                    "study": spec["name"], "scale": spec["scale"], "config": json.dumps(config, sort_keys=True),
-                   "length_scale": "1 m", "E": material["E"], **scene},
+                   "length_scale": "1 m", "E": material["E"], **scene, **inputs},
             progress=emit,
             path_dim=path_dim,
             group_dims=study.get("group_dims", ()),
