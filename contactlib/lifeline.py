@@ -54,6 +54,22 @@ def _watch(parent: int) -> None:
     _terminate()
 
 
+def running(pid: int, command: str | None = None) -> bool:
+    """Whether process ``pid`` is alive and, where the system shows it (``/proc``), its command line
+    contains ``command`` (a recycled pid running something else is not the process once recorded)."""
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except PermissionError:
+        return True
+    cmdline = f"/proc/{pid}/cmdline"
+    if command is None or not os.path.exists(cmdline):
+        return True
+    with open(cmdline, "rb") as f:
+        return command.encode() in f.read()
+
+
 def exit_with_parent() -> str:
     """End this process (SIGTERM) when its parent dies; returns how (``"prctl+watchdog"`` or
     ``"watchdog"``). Call it first thing in a process that must not be orphaned."""

@@ -5,7 +5,7 @@ from pathlib import Path
 
 from snakemake.utils import validate
 
-from contactlib import studies
+from contactlib import lifeline, studies
 
 
 validate(config, schema="../schemas/config.schema.yaml")
@@ -13,18 +13,6 @@ validate(config, schema="../schemas/config.schema.yaml")
 # Recovery after a hard kill, with no extra flags: the default profile (workflow/profiles/default) sets
 # rerun-incomplete, and a lock left by a run that is gone is released here, before Snakemake locks.
 RUN_RECORD = Path(".snakemake/contactlib_run.pid")
-
-
-def _snakemake_alive(pid):
-    """Whether ``pid`` is a live snakemake process (a recycled pid running something else is not)."""
-    try:
-        os.kill(pid, 0)
-    except ProcessLookupError:
-        return False
-    except PermissionError:
-        return True
-    cmdline = Path(f"/proc/{pid}/cmdline")
-    return not cmdline.exists() or b"snakemake" in cmdline.read_bytes()
 
 
 def _recorded_pid():
@@ -37,7 +25,7 @@ def _recorded_pid():
 def record_run():
     """Note this run's snakemake pid, unless a live run holds the record."""
     owner = _recorded_pid()
-    if owner is None or owner == os.getpid() or not _snakemake_alive(owner):
+    if owner is None or owner == os.getpid() or not lifeline.running(owner, "snakemake"):
         RUN_RECORD.parent.mkdir(exist_ok=True)
         RUN_RECORD.write_text(f"{os.getpid()}\n")
 
@@ -46,7 +34,7 @@ def release_stale_lock():
     """Remove Snakemake's locks when the run that took them (its recorded pid) is dead."""
     locks = sorted(Path(".snakemake/locks").glob("*.lock"))
     owner = _recorded_pid()
-    if not locks or owner is None or _snakemake_alive(owner):
+    if not locks or owner is None or lifeline.running(owner, "snakemake"):
         return
     for lock in locks:
         lock.unlink(missing_ok=True)
