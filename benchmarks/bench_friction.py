@@ -47,8 +47,6 @@ for _var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
 import argparse
 import json
 import math
-import platform
-import subprocess
 import sys
 import time
 import warnings
@@ -57,7 +55,9 @@ from pathlib import Path
 import numpy as np
 
 import contactlib
-from contactlib import fft as cfft
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from bench_solver import host_info  # noqa: E402
 
 MAX_REPEATS = 15
 """Most timed solves of one configuration (reached only by solves far shorter than ``--min-time``)."""
@@ -445,33 +445,7 @@ def table_cm(rows, args) -> list[str]:
 # ------------------------------------------------------------------------------------ driver
 
 def machine_info(args) -> dict:
-    cpu = "?"
-    try:
-        with open("/proc/cpuinfo") as f:
-            cpu = next(ln.split(":", 1)[1].strip() for ln in f if ln.startswith("model name"))
-    except (OSError, StopIteration):
-        pass
-    import pyfftw
-
-    info = {
-        "cpu": cpu, "logical_cpus": os.cpu_count(), "python": platform.python_version(), "numpy": np.__version__,
-        "pyfftw": pyfftw.__version__, "contactlib": contactlib.__version__, "fftw_effort": cfft.fft_options()["effort"],
-        "date": time.strftime("%Y-%m-%d %H:%M:%S"), "command": " ".join([Path(sys.argv[0]).name] + sys.argv[1:]),
-    }
-    try:
-        repo = Path(__file__).resolve().parent.parent
-        rev = subprocess.run(["git", "-C", str(repo), "describe", "--always", "--dirty"], capture_output=True,
-                             text=True)
-        info["contactlib_git"] = rev.stdout.strip() or "?"
-    except OSError:
-        pass
-    try:
-        import psutil
-
-        info["memory_gib"] = round(psutil.virtual_memory().total / 2**30, 1)
-    except ImportError:
-        pass
-    info["load_avg_1min"] = round(os.getloadavg()[0], 2)
+    info = host_info()
     if "cm" in args.measurements and not args.skip_cm:
         info["ContactMechanics"] = dist_version("ContactMechanics")
         info["SurfaceTopography"] = dist_version("SurfaceTopography")

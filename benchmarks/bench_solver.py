@@ -483,7 +483,8 @@ def bench_case(n, heights, target, threads, args, log, shared: dict) -> list[Row
     return rows
 
 
-def machine_info() -> dict:
+def host_info() -> dict:
+    """The machine and software a benchmark ran on (bench_friction.py records the same)."""
     cpu = "?"
     try:
         with open("/proc/cpuinfo") as f:
@@ -507,9 +508,14 @@ def machine_info() -> dict:
         import psutil
 
         info["memory_gib"] = round(psutil.virtual_memory().total / 2**30, 1)
-        info["load_avg_1min"] = os.getloadavg()[0]
     except ImportError:
         pass
+    info["load_avg_1min"] = round(os.getloadavg()[0], 2)
+    return info
+
+
+def machine_info() -> dict:
+    info = host_info()
     for name, peer in PEERS.items():
         if name != "contactlib":
             info[name] = peer.version() if peer.available() else "not installed"

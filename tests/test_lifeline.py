@@ -25,7 +25,8 @@ time.sleep(120)
 """
 
 
-def _alive(pid: int) -> bool:
+def process_alive(pid: int) -> bool:
+    """Whether ``pid`` runs (a zombie, dead but not yet reaped, does not)."""
     stat = Path(f"/proc/{pid}/stat")
     try:
         return stat.read_text().rsplit(")", 1)[1].split()[0] != "Z"
@@ -40,13 +41,13 @@ def test_child_exits_when_parent_is_killed(mode, how, within):
     try:
         pid, reported = parent.stdout.readline().split()
         pid = int(pid)
-        assert reported == how and _alive(pid)
+        assert reported == how and process_alive(pid)
         os.kill(parent.pid, signal.SIGKILL)
         parent.wait()
         start = time.monotonic()
-        while _alive(pid) and time.monotonic() - start < 10:
+        while process_alive(pid) and time.monotonic() - start < 10:
             time.sleep(0.05)
-        assert not _alive(pid), "the child outlived its parent by 10 s"
+        assert not process_alive(pid), "the child outlived its parent by 10 s"
         assert time.monotonic() - start < within
     finally:
         parent.kill()

@@ -18,6 +18,8 @@ import pytest
 import xarray as xr
 import yaml
 
+from test_lifeline import process_alive
+
 ROOT = Path(__file__).resolve().parents[1]
 TARGET = "results/area_load.nc"
 
@@ -64,13 +66,6 @@ def _descendants(pid: int) -> list[int]:
     return found
 
 
-def _alive(pid: int) -> bool:
-    try:
-        return (Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()[0]) != "Z"
-    except OSError:
-        return False
-
-
 def _finish(work: Path) -> str:
     proc = _command(cwd=work)
     out, _ = proc.communicate(timeout=300)
@@ -93,9 +88,9 @@ def test_sigkill_of_snakemake_leaves_no_process_and_one_command_finishes(tmp_pat
         os.kill(proc.pid, signal.SIGKILL)
         proc.wait()
         start = time.monotonic()
-        while any(_alive(pid) for pid in run) and time.monotonic() - start < 10:
+        while any(process_alive(pid) for pid in run) and time.monotonic() - start < 10:
             time.sleep(0.1)
-        left = [pid for pid in run if _alive(pid)]
+        left = [pid for pid in run if process_alive(pid)]
         assert not left, f"processes of the killed run still alive after 10 s: {left}"
     finally:
         if proc.poll() is None:
