@@ -1,7 +1,7 @@
 """contactlib: rough-surface contact mechanics with FFT boundary elements.
 
-The public API: :func:`solve` for normal contact on a half-space or :class:`Layer`, with Coulomb
-friction, :mod:`contactlib.surfaces` to
+The public API: :func:`solve` for normal contact on a half-space or :class:`Layer` of an
+:class:`Elastic` or :class:`Viscoelastic` material, with Coulomb friction and steady sliding, :mod:`contactlib.surfaces` to
 generate surfaces or read measured ones (``surfaces.read``), :mod:`contactlib.analysis` to measure them and their contact fields,
 :mod:`contactlib.accuracy` for the measured grid and tolerance rules
 (``solve(..., target_error=...)``).
@@ -12,5 +12,6 @@ from ._version import __version__
 from .bodies import Layer
 from .contact import ConvergenceError, solve, solve_tolerances
 from .grid import Grid
+from .materials import Elastic, Viscoelastic
 
-__all__ = ["solve", "Layer", "solve_tolerances", "ConvergenceError", "Grid", "surfaces", "analysis", "reference", "accuracy", "__version__"]
+__all__ = ["solve", "Layer", "Elastic", "Viscoelastic", "solve_tolerances", "ConvergenceError", "Grid", "surfaces", "analysis", "reference", "accuracy", "__version__"]

@@ -25,6 +25,8 @@ VARIABLES: dict[str, dict[str, str]] = {
     "friction_coefficient_interlocking": {"units": "1",
                                           "long_name": "interlocking friction coefficient mu_a (pressure asymmetry)"},
     "friction_coefficient": {"units": "1", "long_name": "total friction coefficient mu_c + mu_a"},
+    "dissipated_power": {"units": "{pressure} {length} s-1",
+                         "long_name": "power dissipated in the body per unit area (steady sliding)"},
     "residual": {"units": "1", "long_name": "scale-free contact residual"},
     "wavenumber": {"units": "rad {length}-1", "long_name": "wavenumber |q|"},
     "psd": {"units": "{length}4", "long_name": "radially averaged power spectral density"},
