@@ -1,10 +1,10 @@
 """contactlib: rough-surface contact mechanics with FFT boundary elements.
 
 The public API: :func:`solve` for normal contact on a half-space or :class:`Layer` of an
-:class:`Elastic` or :class:`Viscoelastic` material, with Coulomb friction and steady sliding, :mod:`contactlib.surfaces` to
-generate surfaces or read measured ones (``surfaces.read``), :mod:`contactlib.analysis` to measure them and their contact fields,
-:mod:`contactlib.accuracy` for the measured grid and tolerance rules
-(``solve(..., target_error=...)``).
+:class:`Elastic` or :class:`Viscoelastic` material, with Coulomb friction and steady sliding;
+:mod:`contactlib.surfaces` to generate surfaces or read measured ones (``surfaces.read``);
+:mod:`contactlib.analysis` to measure them and their contact fields; :mod:`contactlib.accuracy` for
+the measured grid and tolerance rules (``solve(..., target_error=...)``).
 """
 
 from . import accuracy, analysis, reference, surfaces

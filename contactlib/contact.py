@@ -1,4 +1,4 @@
-"""Public entry point for frictionless normal contact: :func:`solve`."""
+"""Public entry point for normal contact, elastic or viscoelastic, at rest or sliding: :func:`solve`."""
 
 from __future__ import annotations
 

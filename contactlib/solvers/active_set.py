@@ -46,7 +46,8 @@ def _solve_fixed_penetration(operator, hp, penetration, scale, max_sets):
         if np.array_equal(A, A.T):
             p[active] = _gauss_seidel(A, flat_hp[active] + penetration, x0)
         else:  # a sliding viscoelastic body: Gauss-Seidel needs symmetry, LU does not
-            p[active] = lu_solve(lu_factor(A, check_finite=False), flat_hp[active] + penetration, check_finite=False)
+            p[active] = lu_solve(lu_factor(A, check_finite=False), flat_hp[active] + penetration,
+                                 check_finite=False)
         gap = (operator(p.reshape(hp.shape)) - hp - penetration).ravel()
         keep = active[p[active] > 0]
         outside = np.ones(hp.size, dtype=bool)
