@@ -62,6 +62,11 @@ def spheres(n: int, *, length: float = 1.0, radius, summit_height=0.0, centers=N
     Summit heights are ``summit_height`` plus Gaussian scatter of std ``height_std``;
     ``radius`` may be one value or one per asperity. Each cap is the exact sphere
     ``z_k - R_k + sqrt(R_k^2 - r^2)`` (nearest periodic image), truncated at the base 0.
+
+    The returned DataArray carries its asperity table in ``attrs`` (1D arrays, one entry per
+    asperity): ``asperity_center_x``, ``asperity_center_y`` [length] (2D only), ``asperity_radius``
+    [length] and ``asperity_summit_height`` [length], so the same object feeds :func:`contactlib.solve`
+    and :func:`contactlib.two_scale.solve`.
     """
     grid = _grid(n, length, dim)
     rng = np.random.default_rng(seed)
@@ -88,5 +93,7 @@ def spheres(n: int, *, length: float = 1.0, radius, summit_height=0.0, centers=N
             d2 = d2 + (dx[:, None] ** 2 if (dim == 2 and axis == 0) else dx[None, :] ** 2 if dim == 2 else dx**2)
         cap = np.where(d2 < R**2, z - R + np.sqrt(np.clip(R**2 - d2, 0, None)), -np.inf)
         h = np.maximum(h, cap)
+    table = {f"asperity_center_{axis}": np.array(centers[:, i]) for i, axis in enumerate("xy"[:dim])}
+    table.update(asperity_radius=np.array(radii, dtype=float), asperity_summit_height=np.array(tops, dtype=float))
     return _as_dataarray(h, grid, length_unit, generator="contactlib.surfaces.spheres", periodic=1, asperities=k,
-                         seed=seed)
+                         seed=seed, **table)

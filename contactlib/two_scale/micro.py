@@ -1,0 +1,214 @@
+"""Micro scale: the pressure on each asperity from a local FFT solve, the others entering as a known
+displacement (seed paper 1, second step).
+
+The surface's grid is split into one small window per asperity, centred on the grid node nearest its
+summit and aligned with the grid. Each outer iteration:
+
+1. ``u_all = K p`` on the whole grid, one FFT convolution with the same operator as the full solver
+   (:class:`contactlib.operators.Compliance`);
+2. for each asperity, the displacement due to all the other pressures (and its own far images) on
+   its window is ``u_ext = u_all - K_w p_k``, with ``K_w`` the zero-padded half-space kernel on the
+   window; at the fixed point ``u_ext + K_w p_k = u_all`` is exactly the full solver's displacement,
+   whatever ``K_w``, and the closer ``K_w`` is to the global kernel, the faster the sweep converges;
+3. a constrained CG solve of the window alone (contactlib's own solvers), with the heights lowered by
+   ``u_ext`` and masked to the asperity's footprint, at the common rigid approach;
+4. under load control the approach moves by ``(P - sum p dA) / k``, ``k`` the macro step's stiffness.
+
+The first ``p`` holds Hertz's pressure with the macro forces and contact radii. The iteration is a
+block Jacobi sweep of the full problem; at its fixed point every local gap is the full solver's gap,
+so the answer is the full solver's up to the tolerance. It stops when the relative change of the
+whole pressure field, ``||p_new - p_old|| / ||p_new||``, and (load control) the relative force error
+are both at most ``tol``.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..grid import Grid
+from ..operators import Compliance
+from ..solvers import solve_polonsky_keer
+from ..solvers.state import contact_residual, height_scale
+from .asperities import AsperityTable
+from .macro import HertzLaw, MacroState
+
+WINDOW_MARGIN = 1.6
+"""Window half-width in macro contact radii (the largest), plus :data:`WINDOW_PAD` nodes."""
+WINDOW_PAD = 4
+LOCAL_TOL_FACTOR = 0.1
+"""Local solves run at this fraction of the outer tolerance, so the outer change measures the coupling."""
+
+
+@dataclass(frozen=True)
+class MicroState:
+    """Two-scale solution on the surface's grid.
+
+    Attributes
+    ----------
+    pressure, displacement, gap : ndarray
+        Fields on the grid [pressure], [length], [length]; ``gap = displacement + z_top - h - delta``.
+    force : ndarray
+        Force on each asperity, ``sum p dA`` over its window [force].
+    contact_nodes : ndarray
+        Grid nodes in contact per asperity.
+    penetration : float
+        Rigid approach [length].
+    iterations : int
+        Outer (block Jacobi) iterations.
+    local_iterations : int
+        CG iterations of all local solves together.
+    change : float
+        Last relative change of the pressure field [1].
+    residual : float
+        :func:`contactlib.solvers.contact_residual` of the assembled fields [1].
+    converged : bool
+    window : int
+        Window size in nodes.
+    """
+
+    pressure: np.ndarray
+    displacement: np.ndarray
+    gap: np.ndarray
+    force: np.ndarray
+    contact_nodes: np.ndarray
+    penetration: float
+    iterations: int
+    local_iterations: int
+    change: float
+    residual: float
+    converged: bool
+    window: int
+
+
+def hertz_pressure_field(table: AsperityTable, grid: Grid, force: np.ndarray, contact_radius: np.ndarray,
+                         window: int) -> np.ndarray:
+    """Hertz pressure ``p0 sqrt(1 - r^2/a^2)`` of each asperity sampled on the grid and scaled so that
+    its nodes carry the force exactly [pressure]."""
+    p = np.zeros(grid.shape)
+    h = grid.spacing[0]
+    for k in np.flatnonzero(force > 0):
+        rows, cols, dx, dy = _window(table, grid, k, window)
+        r2 = dx[:, None] ** 2 + dy[None, :] ** 2
+        local = np.sqrt(np.clip(1.0 - r2 / contact_radius[k] ** 2, 0.0, None))
+        total = local.sum() * h * h
+        if total > 0:
+            p[np.ix_(rows, cols)] += local * force[k] / total
+    return p
+
+
+def _window(table: AsperityTable, grid: Grid, k: int, window: int):
+    """Grid rows and columns of asperity ``k``'s window (wrapped if periodic) and the node offsets from
+    its summit [length]."""
+    n, h = grid.shape[0], grid.spacing[0]
+    centre = np.rint(table.centers[k] / h).astype(int)
+    start = centre - window // 2
+    if not table.periodic:
+        start = np.clip(start, 0, n - window)
+    idx = [start[a] + np.arange(window) for a in range(2)]
+    offsets = [i * h - table.centers[k, a] for a, i in enumerate(idx)]
+    if table.periodic:
+        L = table.length
+        offsets = [(o + L / 2) % L - L / 2 for o in offsets]
+        idx = [i % n for i in idx]
+    return idx[0], idx[1], offsets[0], offsets[1]
+
+
+def window_size(table: AsperityTable, grid: Grid, contact_radius: np.ndarray) -> int:
+    """Nodes per side of the local windows: the largest contact with :data:`WINDOW_MARGIN`, even."""
+    h = grid.spacing[0]
+    a = float(np.max(contact_radius)) if contact_radius.size else 0.0
+    half = int(math.ceil(WINDOW_MARGIN * a / h)) + WINDOW_PAD
+    return int(min(2 * half, grid.shape[0]))
+
+
+def solve_micro(table: AsperityTable, macro: MacroState, law: HertzLaw, E_star: float, *, z_top: float,
+                total_force: float | None, tol: float, max_iter: int, local_max_iter: int = 10_000) -> MicroState:
+    """Refine the macro forces into the pressure field (see the module docstring).
+
+    Raises
+    ------
+    ValueError
+        When a local contact reaches its asperity's footprint edge: the separate-contact assumption
+        fails there.
+    """
+    grid, heights = table.grid, table.heights
+    h = grid.spacing[0]
+    dA = h * h
+    radius = law.contact_radius(macro.local_penetration)
+    window = window_size(table, grid, radius)
+    wgrid = Grid((window, window), (window * h, window * h))
+    # zero-padded windows for either kind of surface: their kernel decays like the global one, so the lagged
+    # part u_all - K_w p_k is the small, smooth field of the far images (a periodic window's zero-mean shift
+    # would be a large self-coupling the Jacobi sweep lags by one iteration, and oscillates on)
+    local_op = Compliance(wgrid, E_star=E_star, periodic=False)
+    global_op = Compliance(grid, E_star=E_star, periodic=table.periodic)
+    footprint = table.footprint_radius
+    windows = [_window(table, grid, k, window) for k in range(table.count)]
+    masks = [(dx[:, None] ** 2 + dy[None, :] ** 2) < footprint[k] ** 2 for k, (_, _, dx, dy) in enumerate(windows)]
+    pressure = hertz_pressure_field(table, grid, macro.force, radius, window)
+    delta = macro.penetration
+    stiffness = macro.stiffness
+    local_tol = LOCAL_TOL_FACTOR * tol
+    change, it, local_iterations = np.inf, 0, 0
+    force = np.zeros(table.count)
+    for it in range(1, max_iter + 1):
+        displacement = global_op(pressure)
+        new = np.zeros_like(pressure)
+        body_level = z_top - delta  # undeformed body surface
+        for k, ((rows, cols, _, _), mask) in enumerate(zip(windows, masks)):
+            block = np.ix_(rows, cols)
+            own = pressure[block] * mask
+            external = displacement[block] - (local_op(own) if own.any() else 0.0)
+            local_heights = heights[block] - external
+            inside = local_heights[mask]
+            if inside.max() <= body_level + 0.0 * h:  # not touching
+                continue
+            local_heights = np.where(mask, local_heights, inside.min() - (inside.max() - inside.min()))
+            local_pen = float(local_heights.max() - body_level)
+            args = dict(penetration=local_pen, tol=local_tol, max_iter=local_max_iter,
+                        initial_pressure=own if own.any() else None)
+            state = solve_polonsky_keer(local_op, local_heights, **args)
+            local_iterations += state.iterations
+            p_local = np.where(mask, state.pressure, 0.0)
+            _check_inside(p_local, mask, k)
+            new[block] += p_local
+        norm = float(np.linalg.norm(new))
+        change = float(np.linalg.norm(new - pressure)) / norm if norm > 0 else 0.0
+        pressure = new
+        force_error = 0.0
+        if total_force is not None and total_force > 0:
+            carried = float(pressure.sum()) * dA
+            force_error = abs(carried - total_force) / total_force
+            if stiffness > 0:
+                delta += (total_force - carried) / stiffness
+        if change <= tol and force_error <= tol:
+            break
+    displacement = global_op(pressure)
+    gap = displacement + z_top - heights - delta
+    for k, (rows, cols, _, _) in enumerate(windows):
+        force[k] = float(np.sum(pressure[np.ix_(rows, cols)] * masks[k])) * dA
+    nodes = np.array([np.count_nonzero(pressure[np.ix_(r, c)] * m > 0) for (r, c, _, _), m in zip(windows, masks)])
+    residual = contact_residual(pressure, gap, height_scale(heights))
+    converged = change <= tol
+    return MicroState(pressure, displacement, gap, force, nodes, float(delta), it, local_iterations, change, residual,
+                      converged, window)
+
+
+def _check_inside(p_local: np.ndarray, mask: np.ndarray, k: int) -> None:
+    """Refuse a local contact that reaches the footprint's edge (a node in contact next to a node outside)."""
+    contact = p_local > 0
+    outside = ~mask
+    edge = np.zeros_like(contact)
+    edge[1:] |= outside[:-1]
+    edge[:-1] |= outside[1:]
+    edge[:, 1:] |= outside[:, :-1]
+    edge[:, :-1] |= outside[:, 1:]
+    edge[0] = edge[-1] = True
+    edge[:, 0] = edge[:, -1] = True
+    if np.any(contact & edge):
+        raise ValueError(
+            f"mean_pressure/penetration: the contact of asperity {k} reaches the edge of its footprint (or window): "
+            "the load is beyond what separate spherical contacts carry, so the two-scale method does not apply")
