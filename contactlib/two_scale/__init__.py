@@ -173,6 +173,7 @@ def solve(
               "Conventions": "CF-1.10", **interaction.attrs}
     if not macro.converged:
         ds = _label(table, macro, None, params, E_star, z_top, length_unit, pressure_unit, fields=False)
+        ds.attrs["converged"] = 0
         raise ConvergenceError(f"two_scale macro step: Newton did not converge in {macro.iterations} iterations: "
                                f"residual {macro.residual:.3e} > macro_tol {macro_tol:.1e}",
                                residual=macro.residual, dataset=ds)
@@ -195,20 +196,23 @@ def solve(
 
 
 def _check_separate_contacts(table: AsperityTable, law: HertzLaw, macro: MacroState, z_top: float) -> None:
-    """Refuse a load beyond what separate spherical contacts carry, saying where the assumption breaks."""
-    a = law.contact_radius(macro.local_penetration)
-    footprint = table.footprint_radius
-    ratio = a / footprint
+    """Refuse a load beyond what separate spherical contacts carry, saying where the assumption breaks:
+    a cap pressed down to the base (local penetration >= summit height; its contact then fills the
+    footprint and meets the flat between asperities), or the body reaching the base plane."""
+    ratio = macro.local_penetration / table.summit_height
     worst = int(np.argmax(ratio))
     if ratio[worst] >= 1.0:
+        a = float(law.contact_radius(macro.local_penetration[worst : worst + 1])[0])
         raise ValueError(
-            f"mean_pressure/penetration: the load is beyond what separate spherical contacts carry: asperity {worst}'s "
-            f"Hertz contact radius {a[worst]:.4g} reaches its footprint radius {footprint[worst]:.4g} (the cap is "
-            f"pressed down to the base) at approach {macro.penetration:.4g}; the two-scale method assumes each "
-            "contact stays on its own cap")
+            f"mean_pressure/penetration: the load is beyond what separate spherical contacts carry: asperity {worst} "
+            f"is pressed by {macro.local_penetration[worst]:.4g}, beyond its summit height "
+            f"{table.summit_height[worst]:.4g} (Hertz contact radius {a:.4g}, footprint radius "
+            f"{table.footprint_radius[worst]:.4g}), at approach {macro.penetration:.4g}: the body meets the base "
+            "around it and the contacts are no longer separate caps")
     if macro.penetration >= z_top:
         raise ValueError(f"mean_pressure/penetration: the approach {macro.penetration:.4g} reaches the base plane "
-                         f"(highest point {z_top:.4g}): the body touches between the asperities")
+                         f"(highest point {z_top:.4g}): the body touches between the asperities, so the contacts are "
+                         "no longer separate caps")
 
 
 def _label(table: AsperityTable, macro: MacroState, micro: MicroState | None, params: dict, E_star: float,

@@ -191,6 +191,14 @@ def solve_micro(table: AsperityTable, macro: MacroState, law: HertzLaw, E_star: 
     for k, (rows, cols, _, _) in enumerate(windows):
         force[k] = float(np.sum(pressure[np.ix_(rows, cols)] * masks[k])) * dA
     nodes = np.array([np.count_nonzero(pressure[np.ix_(r, c)] * m > 0) for (r, c, _, _), m in zip(windows, masks)])
+    outside = np.ones(grid.shape, dtype=bool)
+    for (rows, cols, _, _), mask in zip(windows, masks):
+        outside[np.ix_(rows, cols)] &= ~mask
+    if np.any(gap[outside] < 0):
+        raise ValueError(
+            "mean_pressure/penetration: the body reaches the surface between the asperities' footprints (the gap "
+            f"there falls to {float(gap[outside].min()):.3g}): the load is beyond what separate spherical contacts "
+            "carry, so the two-scale method does not apply")
     residual = contact_residual(pressure, gap, height_scale(heights))
     converged = change <= tol
     return MicroState(pressure, displacement, gap, force, nodes, float(delta), it, local_iterations, change, residual,
