@@ -25,7 +25,8 @@ class Material:
 
 
 def footprint_forces(pressure: np.ndarray, table: ts.AsperityTable) -> np.ndarray:
-    """Force on each asperity from a full-grid pressure field: the pressure inside its footprint."""
+    """Force on each asperity from a full-grid pressure field: the pressure inside its footprint (the
+    test's own loop over the whole grid, to check :func:`contactlib.two_scale.asperity_forces`)."""
     n = pressure.shape[0]
     h = table.length / n
     x = np.arange(n) * h
@@ -35,6 +36,7 @@ def footprint_forces(pressure: np.ndarray, table: ts.AsperityTable) -> np.ndarra
         dy = (x - c[1] + table.length / 2) % table.length - table.length / 2
         out[k] = pressure[(dx[:, None] ** 2 + dy[None, :] ** 2) < rf**2].sum() * h * h
     assert math.isclose(out.sum(), pressure.sum() * h * h, rel_tol=1e-12)  # all the load is on some asperity
+    np.testing.assert_allclose(ts.asperity_forces(pressure, table), out, rtol=1e-12, atol=1e-300)
     return out
 
 

@@ -22,14 +22,15 @@ from ..contact import ConvergenceError
 from ..labels import attrs_for
 from ..materials import contact_modulus
 from ..operators import Compliance
-from .asperities import AsperityTable, asperity_table
+from .asperities import AsperityTable, asperity_forces, asperity_table
+from .fields import random_asperity_field
 from .interaction import PointInteraction
 from .macro import HertzLaw, MacroState, solve_macro
 from .micro import MicroState, hertz_pressure_field, solve_micro, window_size
 
 SCALES = ("macro", "two-scale")
 
-__all__ = ["solve", "asperity_table", "AsperityTable", "PointInteraction", "HertzLaw", "solve_macro", "solve_micro",
+__all__ = ["solve", "asperity_table", "asperity_forces", "random_asperity_field", "AsperityTable", "PointInteraction", "HertzLaw", "solve_macro", "solve_micro",
            "MacroState", "MicroState", "SCALES"]
 
 

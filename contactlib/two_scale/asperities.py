@@ -178,3 +178,27 @@ def _check_separate(table: AsperityTable) -> None:
             f"asperities overlap: asperity {k[i]} and {l[i]} are {r[i]:.4g} apart but their footprints have radii "
             f"{footprint[k[i]]:.4g} and {footprint[l[i]]:.4g} ({int(overlap.sum())} overlapping pairs); the two-scale "
             "method assumes separate spherical caps (place them further apart or lower the summits)")
+
+
+def asperity_forces(pressure: np.ndarray, table: AsperityTable) -> np.ndarray:
+    """Force on each asperity from a pressure field on the table's grid (e.g. :func:`contactlib.solve`'s):
+    the pressure summed over its footprint times the node area [force]. With separate footprints every
+    loaded node belongs to one asperity at most."""
+    if table.grid is None:
+        raise ValueError("asperities: the table has no grid to read a pressure field on")
+    pressure = np.asarray(pressure, dtype=float)
+    if pressure.shape != table.grid.shape:
+        raise ValueError(f"pressure has shape {pressure.shape}, the grid {table.grid.shape}")
+    n, step = table.grid.shape[0], table.grid.spacing[0]
+    x = np.arange(n) * step
+    out = np.zeros(table.count)
+    for k, (c, reach) in enumerate(zip(table.centers, table.footprint_radius)):
+        half = int(np.ceil(reach / step)) + 1
+        idx = [np.arange(n) if 2 * half + 1 >= n else (int(np.rint(c[a] / step)) + np.arange(-half, half + 1)) % n
+               for a in range(2)]
+        d = [x[i] - c[a] for a, i in enumerate(idx)]
+        if table.periodic:
+            d = [(v + table.length / 2) % table.length - table.length / 2 for v in d]
+        inside = d[0][:, None] ** 2 + d[1][None, :] ** 2 < reach**2
+        out[k] = float(np.sum(pressure[np.ix_(*idx)] * inside)) * step * step
+    return out
