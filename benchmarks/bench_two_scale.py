@@ -32,88 +32,29 @@ for _var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
 import argparse
 import json
 import math
-import statistics
 import sys
-import time
 from pathlib import Path
 
-import numpy as np
-
-import contactlib
-import contactlib.two_scale as ts
-from contactlib.two_scale.fields import SUMMIT_OVER_FOOTPRINT
+from contactlib.studies.two_scale import compare_methods, nodes_per_spacing
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from bench_solver import host_info  # noqa: E402
 
 E, NU = 1.0, 0.5
-APPROACH = 0.4
-"""Approach in mean summit heights."""
-
-
-def nodes_per_spacing(coverage: float, nodes_per_radius: float) -> int:
-    """Grid nodes per mean spacing giving ``nodes_per_radius`` nodes per Hertz radius ``sqrt(R 0.4 z)``."""
-    s = SUMMIT_OVER_FOOTPRINT
-    radius_over_footprint = (1 + s * s) / (2 * s)
-    contact_over_footprint = math.sqrt(radius_over_footprint * APPROACH * s)
-    footprint_over_spacing = math.sqrt(coverage / math.pi)
-    return int(math.ceil(nodes_per_radius / (contact_over_footprint * footprint_over_spacing)))
-
-
-def errors(out, reference, reference_forces) -> dict:
-    forces = out.force.values
-    total = float(reference_forces.sum())
-    row = {"force_error": abs(float(forces.sum()) / total - 1),
-           "asperity_force_error": float(np.max(np.abs(forces - reference_forces)) / reference_forces.max()),
-           "contact_area_error": abs(float(out.contact_area) / float(reference.contact_area) - 1)}
-    if "pressure" in out:
-        p, q = out.pressure.values, reference.pressure.values
-        row["pressure_error"] = float(np.linalg.norm(p - q) / np.linalg.norm(q))
-    return row
 
 
 def run_case(count: int, coverage: float, args) -> dict:
-    nps = nodes_per_spacing(coverage, args.nodes_per_radius)
-    n = int(round(nps * math.sqrt(count)))
+    """One field: :func:`contactlib.studies.two_scale.compare_methods` (the study's own point), or the reason
+    it was skipped."""
+    n = int(round(nodes_per_spacing(coverage, args.nodes_per_radius) * math.sqrt(count)))
     case = {"count": count, "coverage": coverage, "n": n}
     if n > args.max_nodes:
         case["skipped"] = f"grid {n}^2 above --max-nodes {args.max_nodes}"
         return case
-    field = ts.random_asperity_field(count, coverage=coverage, nodes_per_spacing=nps, seed=args.seed)
-    table = ts.asperity_table(field)
-    # an asperity of mean height indents by 0.4 z; the approach counts from the highest node
-    approach = float(field.max()) - (1 - APPROACH) * float(np.mean(table.summit_height))
-    reference = contactlib.solve(field, E=E, nu=NU, penetration=approach, tol=args.ref_tol)
-    reference_forces = ts.asperity_forces(reference.pressure.values, table)
-    solvers = {
-        "macro": lambda: ts.solve(field, E=E, nu=NU, penetration=approach, scale="macro", fields=False),
-        "two_scale": lambda: ts.solve(field, E=E, nu=NU, penetration=approach, tol=args.two_scale_tol),
-        "full": lambda: contactlib.solve(field, E=E, nu=NU, penetration=approach, tol=args.full_tol),
-    }
-    times = {name: [] for name in solvers}
-    outputs = {name: solve() for name, solve in solvers.items()}  # warm-up
-    for _ in range(args.repeats):
-        for name, solve in solvers.items():
-            start = time.perf_counter()
-            solve()
-            times[name].append(time.perf_counter() - start)
-    outputs["macro"] = ts.solve(field, E=E, nu=NU, penetration=approach, scale="macro")  # its fields, untimed
-    case.update(in_contact=int(np.count_nonzero(reference_forces)), contact_area=float(reference.contact_area),
-                full_iterations=int(outputs["full"].iterations),
-                two_scale_iterations=int(outputs["two_scale"].attrs["micro_iterations"]))
-    for name in solvers:
-        case[f"{name}_time"] = statistics.median(times[name])
-        full_row = errors(outputs[name], reference, reference_forces) if name != "full" else \
-            errors(_with_forces(outputs[name], table), reference, reference_forces)
-        case.update({f"{name}_{k}": v for k, v in full_row.items()})
-    case["two_scale_speedup"] = case["full_time"] / case["two_scale_time"]
-    case["macro_speedup"] = case["full_time"] / case["macro_time"]
+    case.update(compare_methods(count=count, coverage=coverage, seed=args.seed, nodes_per_radius=args.nodes_per_radius,
+                                full_tol=args.full_tol, two_scale_tol=args.two_scale_tol, repeats=args.repeats,
+                                E=E, nu=NU, tol=args.ref_tol))
     return case
-
-
-def _with_forces(out, table):
-    """The full solver's Dataset with per-asperity forces, for the same error measures."""
-    return out.assign(force=("asperity", ts.asperity_forces(out.pressure.values, table)))
 
 
 def main(argv=None) -> None:
