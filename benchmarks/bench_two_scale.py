@@ -51,9 +51,13 @@ def run_case(count: int, coverage: float, args) -> dict:
     if n > args.max_nodes:
         case["skipped"] = f"grid {n}^2 above --max-nodes {args.max_nodes}"
         return case
-    case.update(compare_methods(count=count, coverage=coverage, seed=args.seed, nodes_per_radius=args.nodes_per_radius,
-                                full_tol=args.full_tol, two_scale_tol=args.two_scale_tol, repeats=args.repeats,
-                                E=E, nu=NU, tol=args.ref_tol))
+    try:
+        case.update(compare_methods(count=count, coverage=coverage, seed=args.seed,
+                                    nodes_per_radius=args.nodes_per_radius, full_tol=args.full_tol,
+                                    two_scale_tol=args.two_scale_tol, repeats=args.repeats, E=E, nu=NU,
+                                    tol=args.ref_tol))
+    except (ValueError, RuntimeError) as err:  # a refused scene or a non-convergence is a result too
+        case["skipped"] = f"{type(err).__name__}: {err}"
     return case
 
 
@@ -81,7 +85,7 @@ def main(argv=None) -> None:
             case = run_case(count, coverage, args)
             rows.append(case)
             if "skipped" in case:
-                print(f"| {count} | {coverage} | {case['n']} | skipped: {case['skipped']} |" + " |" * 11)
+                print(f"| {count} | {coverage} | {case['n']} | {case['skipped']} |" + " |" * 11, flush=True)
             else:
                 print(f"| {count} | {coverage} | {case['n']} | {case['in_contact']} | {case['full_time']:.3g} | "
                       f"{case['two_scale_time']:.3g} | {case['macro_time']:.3g} | {case['two_scale_speedup']:.2f} | "

@@ -22,7 +22,7 @@ import numpy as np
 
 from .. import two_scale
 from ..contact import solve
-from ..two_scale.fields import SUMMIT_OVER_FOOTPRINT
+from ..two_scale.fields import SCATTER_CLIP, SUMMIT_OVER_FOOTPRINT
 
 APPROACH = 0.4
 """Indentation of an asperity of mean summit height, in summit heights [1]."""
@@ -30,7 +30,7 @@ METHODS = ("macro", "two_scale", "full")
 
 VARIABLES: dict[str, dict[str, str]] = {
     "count": {"units": "1", "long_name": "number of asperities"},
-    "coverage": {"units": "1", "long_name": "fraction of the window under asperity footprints"},
+    "coverage": {"units": "1", "long_name": "fraction of the window under the asperities' exclusion discs"},
     "seed": {"units": "1", "long_name": "random seed of the asperity field"},
     "n": {"units": "1", "long_name": "grid points per side"},
     "in_contact": {"units": "1", "long_name": "asperities in contact (reference)"},
@@ -50,9 +50,10 @@ VARIABLES: dict[str, dict[str, str]] = {
 def nodes_per_spacing(coverage: float, nodes_per_radius: float) -> int:
     """Grid nodes per mean asperity spacing giving ``nodes_per_radius`` nodes per Hertz contact radius
     ``sqrt(R APPROACH z)`` of a mean asperity of :func:`contactlib.two_scale.random_asperity_field`."""
-    s = SUMMIT_OVER_FOOTPRINT
+    s = SUMMIT_OVER_FOOTPRINT  # of the tallest cap, whose footprint sets the coverage
     radius_over_footprint = (1 + s * s) / (2 * s)
-    contact_over_footprint = math.sqrt(radius_over_footprint * APPROACH * s)
+    mean_summit_over_footprint = s / (1 + SCATTER_CLIP * 0.1)  # random_asperity_field's default scatter 0.1
+    contact_over_footprint = math.sqrt(radius_over_footprint * APPROACH * mean_summit_over_footprint)
     return int(math.ceil(nodes_per_radius / (contact_over_footprint * math.sqrt(coverage / math.pi))))
 
 

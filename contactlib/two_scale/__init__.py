@@ -181,7 +181,7 @@ def solve(
     _check_separate_contacts(table, law, macro, z_top)
     micro = None
     if scale == "two-scale":
-        micro = solve_micro(table, macro, law, E_star, z_top=z_top, total_force=total_force, tol=tol,
+        micro = solve_micro(table, macro, law, E_star, interaction, z_top=z_top, total_force=total_force, tol=tol,
                             max_iter=int(max_iter))
         params.update(micro_iterations=micro.iterations, local_iterations=micro.local_iterations,
                       micro_change=micro.change, micro_window=micro.window)

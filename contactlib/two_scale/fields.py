@@ -11,7 +11,9 @@ from scipy.spatial import cKDTree
 from .. import surfaces
 
 SUMMIT_OVER_FOOTPRINT = 0.1
-"""Summit height over footprint radius: caps of slope about 0.2 at their edge."""
+"""Summit height over footprint radius of the tallest cap: caps of slope about 0.2 at their edge."""
+SCATTER_CLIP = 3.0
+"""Summit heights are clipped at this many standard deviations from their mean."""
 
 
 def random_asperity_field(count: int, *, coverage: float, nodes_per_spacing: int, height_scatter: float = 0.1,
@@ -24,8 +26,9 @@ def random_asperity_field(count: int, *, coverage: float, nodes_per_spacing: int
     count : int
         Number of asperities N.
     coverage : float
-        Fraction of the window under the footprints, ``N pi r_f^2`` [1]; random sequential addition
-        jams at 0.547, so up to about 0.5 ("nearly touching").
+        Fraction of the window under the footprints of the tallest possible cap (summit at the mean
+        plus :data:`SCATTER_CLIP` deviations), ``N pi r_f^2`` [1]: the exclusion discs of random sequential
+        addition, which jams at 0.547, so up to about 0.5 ("nearly touching").
     nodes_per_spacing : int
         Grid nodes per mean spacing ``1 / sqrt(N)``: the grid has ``nodes_per_spacing sqrt(N)`` points
         per side.
@@ -45,14 +48,13 @@ def random_asperity_field(count: int, *, coverage: float, nodes_per_spacing: int
     if int(count) < 1:
         raise ValueError(f"count must be >= 1, got {count!r}")
     rng = np.random.default_rng(seed)
-    footprint = math.sqrt(coverage / (math.pi * count))
-    summit = SUMMIT_OVER_FOOTPRINT * footprint
-    radius = (footprint**2 + summit**2) / (2 * summit)
-    heights = summit * (1 + height_scatter * np.clip(rng.standard_normal(int(count)), -3, 3))
-    heights = np.clip(heights, 0.05 * summit, radius)
-    # the tallest cap has the widest footprint: keep every pair apart by twice that
-    widest = math.sqrt(float(heights.max()) * (2 * radius - float(heights.max())))
-    centers = _sequential_addition(int(count), 2 * widest * (1 + 1e-9), rng, max_attempts)
+    footprint = math.sqrt(coverage / (math.pi * count))  # of the tallest possible cap
+    tallest = SUMMIT_OVER_FOOTPRINT * footprint
+    radius = (footprint**2 + tallest**2) / (2 * tallest)
+    summit = tallest / (1 + SCATTER_CLIP * height_scatter)
+    heights = summit * (1 + height_scatter * np.clip(rng.standard_normal(int(count)), -SCATTER_CLIP, SCATTER_CLIP))
+    heights = np.clip(heights, 0.05 * summit, tallest)
+    centers = _sequential_addition(int(count), 2 * footprint * (1 + 1e-9), rng, max_attempts)
     n = int(round(nodes_per_spacing * math.sqrt(count)))
     field = surfaces.spheres(n, length=1.0, radius=radius, centers=centers, summit_height=heights)
     field.attrs.update(coverage=coverage, footprint_radius=footprint)

@@ -156,6 +156,13 @@ def solve_macro(table: AsperityTable, interaction: PointInteraction, law: HertzL
 
 def _newton_solve(interaction: PointInteraction, slope: np.ndarray, rhs: np.ndarray) -> np.ndarray:
     """Solve ``(I + T D) x = rhs``, ``D = diag(slope)``, through the SPD system on the contact set."""
+    return rhs - interaction(solve_contact_compliance(interaction, slope, rhs))
+
+
+def solve_contact_compliance(interaction: PointInteraction, slope: np.ndarray, rhs: np.ndarray) -> np.ndarray:
+    """``y`` with ``(D_A^-1 + T_AA) y_A = rhs_A`` on the asperities in contact ``A = {slope > 0}`` and 0
+    elsewhere: the compliance of the contacts (each Hertz contact's own, ``1 / slope``, plus the
+    interaction) inverted by preconditioned conjugate gradients [force per unit of ``rhs``]."""
     active = np.flatnonzero(slope > 0)
     n = slope.size
     y = np.zeros(n)
@@ -172,10 +179,9 @@ def _newton_solve(interaction: PointInteraction, slope: np.ndarray, rhs: np.ndar
         precondition = LinearOperator((active.size, active.size),
                                       matvec=lambda v: v / (compliance + np.maximum(interaction.diagonal[active], 0)),
                                       dtype=float)
-        y_active, info = cg(operator, rhs[active], rtol=1e-12, atol=0.0, maxiter=10 * active.size + 100,
-                            M=precondition)
+        y_active, _ = cg(operator, rhs[active], rtol=1e-12, atol=0.0, maxiter=10 * active.size + 100, M=precondition)
         y[active] = y_active
-    return rhs - interaction(y)
+    return y
 
 
 def _uncoupled_approach(offsets: np.ndarray, law: HertzLaw, total_force: float) -> float:

@@ -12,7 +12,15 @@ summit and aligned with the grid. Each outer iteration:
    whatever ``K_w``, and the closer ``K_w`` is to the global kernel, the faster the sweep converges;
 3. a constrained CG solve of the window alone (contactlib's own solvers), with the heights lowered by
    ``u_ext`` and masked to the asperity's footprint, at the common rigid approach;
-4. under load control the approach moves by ``(P - sum p dA) / k``, ``k`` the macro step's stiffness.
+4. a coarse correction by the macro model: the sweep changed the forces by ``dF`` but each asperity saw
+   the others' old forces; the forces' answer to that, ``(S^-1 + T) c = -T dF`` on the contacts
+   (``S``: Hertz stiffness ``2 E* a`` of each, ``T``: the point-load interaction), scales each
+   asperity's new pressure by ``(F_k + c_k) / F_k``. Under load control the approach is a coarse unknown
+   too, with ``sum (F + c) = P`` (the bordered system of the macro step).
+
+Without step 4 the sweep is plain block Jacobi, which diverges in an oscillation of the collective mode
+(all forces up, all displacements up, all forces down) once the body sags by as much as the summit
+scatter (coverage 0.2 of 300 asperities: ratio about -1.4 per sweep).
 
 The first ``p`` holds Hertz's pressure with the macro forces and contact radii. The iteration is a
 block Jacobi sweep of the full problem; at its fixed point every local gap is the full solver's gap,
@@ -33,7 +41,8 @@ from ..operators import Compliance
 from ..solvers import solve_polonsky_keer
 from ..solvers.state import contact_residual, height_scale
 from .asperities import AsperityTable
-from .macro import HertzLaw, MacroState
+from .interaction import PointInteraction
+from .macro import HertzLaw, MacroState, solve_contact_compliance
 
 WINDOW_MARGIN = 1.6
 """Window half-width in macro contact radii (the largest), plus :data:`WINDOW_PAD` nodes."""
@@ -124,8 +133,9 @@ def window_size(table: AsperityTable, grid: Grid, contact_radius: np.ndarray) ->
     return int(min(2 * half, grid.shape[0]))
 
 
-def solve_micro(table: AsperityTable, macro: MacroState, law: HertzLaw, E_star: float, *, z_top: float,
-                total_force: float | None, tol: float, max_iter: int, local_max_iter: int = 10_000) -> MicroState:
+def solve_micro(table: AsperityTable, macro: MacroState, law: HertzLaw, E_star: float, interaction: PointInteraction, *,
+                z_top: float, total_force: float | None, tol: float, max_iter: int,
+                local_max_iter: int = 10_000) -> MicroState:
     """Refine the macro forces into the pressure field (see the module docstring).
 
     Raises
@@ -150,40 +160,43 @@ def solve_micro(table: AsperityTable, macro: MacroState, law: HertzLaw, E_star: 
     masks = [(dx[:, None] ** 2 + dy[None, :] ** 2) < footprint[k] ** 2 for k, (_, _, dx, dy) in enumerate(windows)]
     pressure = hertz_pressure_field(table, grid, macro.force, radius, window)
     delta = macro.penetration
-    stiffness = macro.stiffness
     local_tol = LOCAL_TOL_FACTOR * tol
     change, it, local_iterations = np.inf, 0, 0
     force = np.zeros(table.count)
     for it in range(1, max_iter + 1):
         displacement = global_op(pressure)
-        new = np.zeros_like(pressure)
         body_level = z_top - delta  # undeformed body surface
+        patches, old_force, new_force = {}, np.zeros(table.count), np.zeros(table.count)
         for k, ((rows, cols, _, _), mask) in enumerate(zip(windows, masks)):
             block = np.ix_(rows, cols)
             own = pressure[block] * mask
-            external = displacement[block] - (local_op(own) if own.any() else 0.0)
+            old_force[k] = float(own.sum()) * dA
+            external = displacement[block] - (local_op(own) if old_force[k] > 0 else 0.0)
             local_heights = heights[block] - external
             inside = local_heights[mask]
-            if inside.max() <= body_level + 0.0 * h:  # not touching
+            if inside.max() <= body_level:  # not touching
                 continue
             local_heights = np.where(mask, local_heights, inside.min() - (inside.max() - inside.min()))
             local_pen = float(local_heights.max() - body_level)
-            args = dict(penetration=local_pen, tol=local_tol, max_iter=local_max_iter,
-                        initial_pressure=own if own.any() else None)
-            state = solve_polonsky_keer(local_op, local_heights, **args)
+            state = solve_polonsky_keer(local_op, local_heights, penetration=local_pen, tol=local_tol,
+                                        max_iter=local_max_iter, initial_pressure=own if old_force[k] > 0 else None)
             local_iterations += state.iterations
             p_local = np.where(mask, state.pressure, 0.0)
             _check_inside(p_local, mask, k)
-            new[block] += p_local
+            patches[k] = p_local
+            new_force[k] = float(p_local.sum()) * dA
+        scale, step = _coarse_correction(interaction, law, E_star, old_force, new_force, total_force)
+        delta += step
+        new = np.zeros_like(pressure)
+        for k, p_local in patches.items():
+            rows, cols, _, _ = windows[k]
+            new[np.ix_(rows, cols)] += p_local * scale[k]
         norm = float(np.linalg.norm(new))
         change = float(np.linalg.norm(new - pressure)) / norm if norm > 0 else 0.0
         pressure = new
         force_error = 0.0
         if total_force is not None and total_force > 0:
-            carried = float(pressure.sum()) * dA
-            force_error = abs(carried - total_force) / total_force
-            if stiffness > 0:
-                delta += (total_force - carried) / stiffness
+            force_error = abs(float(pressure.sum()) * dA - total_force) / total_force
         if change <= tol and force_error <= tol:
             break
     displacement = global_op(pressure)
@@ -203,6 +216,24 @@ def solve_micro(table: AsperityTable, macro: MacroState, law: HertzLaw, E_star: 
     converged = change <= tol
     return MicroState(pressure, displacement, gap, force, nodes, float(delta), it, local_iterations, change, residual,
                       converged, window)
+
+
+def _coarse_correction(interaction: PointInteraction, law: HertzLaw, E_star: float, old_force: np.ndarray,
+                       new_force: np.ndarray, total_force: float | None) -> tuple[np.ndarray, float]:
+    """Scale factors of the new asperity pressures and the approach step from the macro model (step 4)."""
+    # Hertz stiffness of each new contact, dF/dd = 2 E* a with a = (3 F R / (4 E*))^(1/3)
+    slope = 2.0 * E_star * np.cbrt(3.0 * new_force * law.radius / (4.0 * E_star))
+    rhs = -interaction(new_force - old_force)
+    correction = solve_contact_compliance(interaction, slope, rhs)
+    step = 0.0
+    if total_force is not None and np.any(slope > 0):
+        per_approach = solve_contact_compliance(interaction, slope, np.ones_like(slope))
+        step = (total_force - float(new_force.sum()) - float(correction.sum())) / float(per_approach.sum())
+        correction = correction + per_approach * step
+    scale = np.ones_like(new_force)
+    carried = new_force > 0
+    scale[carried] = np.maximum(new_force[carried] + correction[carried], 0.0) / new_force[carried]
+    return scale, step
 
 
 def _check_inside(p_local: np.ndarray, mask: np.ndarray, k: int) -> None:
