@@ -292,3 +292,14 @@ def test_many_sagging_asperities_converge_with_the_coarse_correction(monkeypatch
     monkeypatch.setattr(micro, "_coarse_correction", lambda *args: (np.ones(table.count), 0.0))
     with pytest.raises((contactlib.ConvergenceError, ValueError)):
         ts.solve(field, E=E, nu=NU, penetration=approach, tol=1e-4, max_iter=12)
+
+
+def test_windows_grow_when_a_contact_outgrows_them(monkeypatch, few):
+    """Windows sized below the contacts: the micro step enlarges them and gives the same answer."""
+    h, _, _, two = few
+    from contactlib.two_scale import micro
+    monkeypatch.setattr(micro, "WINDOW_MARGIN", 0.4)
+    monkeypatch.setattr(micro, "WINDOW_PAD", 1)
+    small = ts.solve(h, E=E, nu=NU, mean_pressure=2e-5)
+    assert small.attrs["micro_window"] > 2 * (math.ceil(0.4 * float(two.contact_radius.max()) * 384) + 1)
+    np.testing.assert_allclose(small.force, two.force, rtol=0, atol=1e-5 * float(two.force.max()))

@@ -251,7 +251,7 @@ def _label(table: AsperityTable, macro: MacroState, micro: MicroState | None, pa
         if micro is not None:
             pressure, displacement, gap = micro.pressure, micro.displacement, micro.gap
         else:
-            window = window_size(table, grid, macro_radius)
+            window = window_size(table, grid=grid, contact_radius=macro_radius)
             pressure = hertz_pressure_field(table, grid, macro.force, macro_radius, window)
             displacement = Compliance(grid, E_star=E_star, periodic=table.periodic)(pressure)
             gap = displacement + z_top - table.heights - macro.penetration

@@ -125,7 +125,7 @@ def _window(table: AsperityTable, grid: Grid, k: int, window: int):
     return idx[0], idx[1], offsets[0], offsets[1]
 
 
-def window_size(table: AsperityTable, grid: Grid, contact_radius: np.ndarray) -> int:
+def window_size(table: AsperityTable, *, grid: Grid, contact_radius: np.ndarray) -> int:
     """Nodes per side of the local windows: the largest contact with :data:`WINDOW_MARGIN`, even."""
     h = grid.spacing[0]
     a = float(np.max(contact_radius)) if contact_radius.size else 0.0
@@ -144,11 +144,31 @@ def solve_micro(table: AsperityTable, macro: MacroState, law: HertzLaw, E_star: 
         When a local contact reaches its asperity's footprint edge: the separate-contact assumption
         fails there.
     """
+    radius = law.contact_radius(macro.local_penetration)
+    window = window_size(table, grid=table.grid, contact_radius=radius)
+    while True:
+        try:
+            return _solve_in_windows(table, macro, law, E_star, interaction, window, z_top=z_top,
+                                     total_force=total_force, tol=tol, max_iter=max_iter,
+                                     local_max_iter=local_max_iter)
+        except _WindowTooSmall:  # a contact grew past the macro step's estimate: larger windows
+            if window >= table.grid.shape[0]:
+                raise ValueError("mean_pressure/penetration: a local contact fills its whole window") from None
+            window = min(2 * window, table.grid.shape[0])
+
+
+class _WindowTooSmall(Exception):
+    """A local contact reached its window's border inside the footprint."""
+
+
+def _solve_in_windows(table: AsperityTable, macro: MacroState, law: HertzLaw, E_star: float,
+                      interaction: PointInteraction, window: int, *, z_top: float, total_force: float | None,
+                      tol: float, max_iter: int, local_max_iter: int) -> MicroState:
+    """:func:`solve_micro` with windows of ``window`` nodes per side."""
     grid, heights = table.grid, table.heights
     h = grid.spacing[0]
     dA = h * h
     radius = law.contact_radius(macro.local_penetration)
-    window = window_size(table, grid, radius)
     wgrid = Grid((window, window), (window * h, window * h))
     # zero-padded windows for either kind of surface: their kernel decays like the global one, so the lagged
     # part u_all - K_w p_k is the small, smooth field of the far images (a periodic window's zero-mean shift
@@ -163,15 +183,20 @@ def solve_micro(table: AsperityTable, macro: MacroState, law: HertzLaw, E_star: 
     local_tol = LOCAL_TOL_FACTOR * tol
     change, it, local_iterations = np.inf, 0, 0
     force = np.zeros(table.count)
+    own_displacement = {}  # K_w p_k of each asperity's current pressure, from its last local solve
     for it in range(1, max_iter + 1):
         displacement = global_op(pressure)
         body_level = z_top - delta  # undeformed body surface
-        patches, old_force, new_force = {}, np.zeros(table.count), np.zeros(table.count)
+        patches, solved, old_force, new_force = {}, {}, np.zeros(table.count), np.zeros(table.count)
         for k, ((rows, cols, _, _), mask) in enumerate(zip(windows, masks)):
             block = np.ix_(rows, cols)
             own = pressure[block] * mask
             old_force[k] = float(own.sum()) * dA
-            external = displacement[block] - (local_op(own) if old_force[k] > 0 else 0.0)
+            if old_force[k] > 0:
+                own_part = own_displacement[k] if k in own_displacement else local_op(own)
+                external = displacement[block] - own_part
+            else:
+                external = displacement[block]
             local_heights = heights[block] - external
             inside = local_heights[mask]
             if inside.max() <= body_level:  # not touching
@@ -184,13 +209,16 @@ def solve_micro(table: AsperityTable, macro: MacroState, law: HertzLaw, E_star: 
             p_local = np.where(mask, state.pressure, 0.0)
             _check_inside(p_local, mask, k)
             patches[k] = p_local
+            solved[k] = state.displacement  # = K_w p_local: the pressure is zero off the footprint
             new_force[k] = float(p_local.sum()) * dA
         scale, step = _coarse_correction(interaction, law, E_star, old_force, new_force, total_force)
         delta += step
         new = np.zeros_like(pressure)
+        own_displacement = {}
         for k, p_local in patches.items():
             rows, cols, _, _ = windows[k]
             new[np.ix_(rows, cols)] += p_local * scale[k]
+            own_displacement[k] = solved[k] * scale[k]  # linear: no convolution needed next sweep
         norm = float(np.linalg.norm(new))
         change = float(np.linalg.norm(new - pressure)) / norm if norm > 0 else 0.0
         pressure = new
@@ -237,17 +265,21 @@ def _coarse_correction(interaction: PointInteraction, law: HertzLaw, E_star: flo
 
 
 def _check_inside(p_local: np.ndarray, mask: np.ndarray, k: int) -> None:
-    """Refuse a local contact that reaches the footprint's edge (a node in contact next to a node outside)."""
+    """Refuse a local contact that reaches the footprint's edge (a node in contact next to a node outside);
+    one that reaches the window's border inside the footprint asks for larger windows."""
     contact = p_local > 0
+    border = np.zeros_like(contact)
+    border[0] = border[-1] = True
+    border[:, 0] = border[:, -1] = True
     outside = ~mask
     edge = np.zeros_like(contact)
     edge[1:] |= outside[:-1]
     edge[:-1] |= outside[1:]
     edge[:, 1:] |= outside[:, :-1]
     edge[:, :-1] |= outside[:, 1:]
-    edge[0] = edge[-1] = True
-    edge[:, 0] = edge[:, -1] = True
+    if np.any(contact & border & ~edge):
+        raise _WindowTooSmall()
     if np.any(contact & edge):
         raise ValueError(
-            f"mean_pressure/penetration: the contact of asperity {k} reaches the edge of its footprint (or window): "
+            f"mean_pressure/penetration: the contact of asperity {k} reaches the edge of its footprint: "
             "the load is beyond what separate spherical contacts carry, so the two-scale method does not apply")
