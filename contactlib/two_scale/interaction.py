@@ -45,11 +45,11 @@ EWALD_NEIGHBOURS = 2.2
 GAUSSIAN_WIDTH = 0.35
 """Spreading Gaussian's standard deviation ``s`` times ``alpha``: the deconvolved multiplier
 ``erfc(q/2 alpha) exp(q^2 s^2)`` still decays like ``exp(-0.13 q^2 / alpha^2)``."""
-MESH_SPACING = 0.5
-"""Mesh spacing in Gaussian widths ``s``: the Gaussian is sampled finely enough that its aliasing is
-below 1e-8."""
-SUPPORT = 6.5
-"""Gaussian support in widths ``s`` (``exp(-6.5^2/2) = 6.6e-10``)."""
+MESH_SPACING = 0.6
+"""Mesh spacing in Gaussian widths ``s``: the mesh's Nyquist wavenumber ``15 alpha`` lies beyond the
+multiplier's decay (``1e-7`` at ``11 alpha``), and the Gaussian's aliased tail there is ``exp(-22)``."""
+SUPPORT = 6.0
+"""Gaussian support in widths ``s`` (``exp(-6^2/2) = 1.5e-8``)."""
 
 
 class PointInteraction:

@@ -47,8 +47,6 @@ class MacroState:
         ``d_k`` [length] (negative: separated by ``-d_k``).
     penetration : float
         Rigid approach ``delta`` from first contact of the highest summit [length].
-    stiffness : float
-        ``d(sum P) / d(delta)`` at the solution [force/length] (0 without contact).
     iterations : int
         Newton iterations.
     residual : float
@@ -60,7 +58,6 @@ class MacroState:
     force: np.ndarray
     local_penetration: np.ndarray
     penetration: float
-    stiffness: float
     iterations: int
     residual: float
     converged: bool
@@ -108,7 +105,7 @@ def solve_macro(table: AsperityTable, interaction: PointInteraction, law: HertzL
     load_control = total_force is not None
     if load_control:
         if total_force == 0:
-            return MacroState(np.zeros_like(z), z - z_top, 0.0, 0.0, 0, 0.0, True)
+            return MacroState(np.zeros_like(z), z - z_top, 0.0, 0, 0.0, True)
         delta = _uncoupled_approach(z - z_top, law, total_force)
     else:
         delta = float(penetration)
@@ -124,15 +121,15 @@ def solve_macro(table: AsperityTable, interaction: PointInteraction, law: HertzL
 
     F, norm = residual_of(d, delta)
     it = 0
-    stiffness = 0.0
     for it in range(1, max_iter + 1):
         if norm <= tol:
             it -= 1
             break
         slope = law.slope(d)
-        a = _newton_solve(interaction, slope, -F)
+        rtol = min(1e-2, 0.1 * norm)  # inexact Newton: the linear solve only as tight as the step needs
+        a = _newton_solve(interaction, slope, -F, rtol=rtol)
         if load_control:
-            b = _newton_solve(interaction, slope, np.ones_like(d))
+            b = _newton_solve(interaction, slope, np.ones_like(d), rtol=rtol)
             sb = float(slope @ b)
             if sb <= 0:
                 raise ValueError("mean_pressure: no asperity in contact during the Newton iteration")
@@ -148,18 +145,17 @@ def solve_macro(table: AsperityTable, interaction: PointInteraction, law: HertzL
                 break
             lam *= 0.5
         d, delta, F, norm = d_new, delta_new, F_new, norm_new
-    slope = law.slope(d)
-    if np.any(slope > 0):
-        stiffness = float(slope @ _newton_solve(interaction, slope, np.ones_like(d)))
-    return MacroState(law.force(d), d, float(delta), stiffness, it, norm, norm <= tol)
+    return MacroState(law.force(d), d, float(delta), it, norm, norm <= tol)
 
 
-def _newton_solve(interaction: PointInteraction, slope: np.ndarray, rhs: np.ndarray) -> np.ndarray:
+def _newton_solve(interaction: PointInteraction, slope: np.ndarray, rhs: np.ndarray, *,
+                  rtol: float = 1e-12) -> np.ndarray:
     """Solve ``(I + T D) x = rhs``, ``D = diag(slope)``, through the SPD system on the contact set."""
-    return rhs - interaction(solve_contact_compliance(interaction, slope, rhs))
+    return rhs - interaction(solve_contact_compliance(interaction, slope, rhs, rtol=rtol))
 
 
-def solve_contact_compliance(interaction: PointInteraction, slope: np.ndarray, rhs: np.ndarray) -> np.ndarray:
+def solve_contact_compliance(interaction: PointInteraction, slope: np.ndarray, rhs: np.ndarray, *,
+                             rtol: float = 1e-12) -> np.ndarray:
     """``y`` with ``(D_A^-1 + T_AA) y_A = rhs_A`` on the asperities in contact ``A = {slope > 0}`` and 0
     elsewhere: the compliance of the contacts (each Hertz contact's own, ``1 / slope``, plus the
     interaction) inverted by preconditioned conjugate gradients [force per unit of ``rhs``]."""
@@ -179,7 +175,7 @@ def solve_contact_compliance(interaction: PointInteraction, slope: np.ndarray, r
         precondition = LinearOperator((active.size, active.size),
                                       matvec=lambda v: v / (compliance + np.maximum(interaction.diagonal[active], 0)),
                                       dtype=float)
-        y_active, _ = cg(operator, rhs[active], rtol=1e-12, atol=0.0, maxiter=10 * active.size + 100, M=precondition)
+        y_active, _ = cg(operator, rhs[active], rtol=max(rtol, 1e-12), atol=0.0, maxiter=10 * active.size + 100, M=precondition)
         y[active] = y_active
     return y
 
