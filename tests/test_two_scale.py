@@ -317,3 +317,25 @@ def test_non_periodic_field_matches_the_full_solver():
     assert np.max(np.abs(two.force.values - reference)) < 1e-4 * reference.max()
     assert np.max(np.abs(macro.force.values - reference)) < 1e-2 * reference.max()
     assert float(two.penetration) == pytest.approx(float(full.penetration), rel=1e-5)
+
+
+def test_known_displacement_hook_for_time_stepping(few):
+    """The hook a viscoelastic time stepper needs: a known displacement of the body. A uniform one, c, is
+    the same as an approach smaller by c (macro and micro); a non-uniform one moves the forces."""
+    h, _, _, two = few
+    table = ts.asperity_table(h)
+    interaction = ts.PointInteraction(table, E_STAR)
+    law = ts.HertzLaw(table.radius, E_STAR)
+    z_top, delta, c = float(h.max()), float(two.penetration), 2e-4
+    shifted = ts.solve_macro(table, interaction, law, penetration=delta - c, z_top=z_top)
+    hooked = ts.solve_macro(table, interaction, law, penetration=delta, z_top=z_top,
+                            known_displacement=np.full(table.count, c))
+    np.testing.assert_allclose(hooked.force, shifted.force, rtol=1e-9)
+    micro_shifted = ts.solve_micro(table, shifted, law, E_STAR, interaction, z_top=z_top, total_force=None,
+                                   tol=1e-6, max_iter=50)
+    micro_hooked = ts.solve_micro(table, hooked, law, E_STAR, interaction, z_top=z_top, total_force=None,
+                                  tol=1e-6, max_iter=50, known_displacement=np.full(h.shape, c))
+    np.testing.assert_allclose(micro_hooked.force, micro_shifted.force, rtol=0, atol=1e-6 * shifted.force.max())
+    tilted = ts.solve_macro(table, interaction, law, penetration=delta, z_top=z_top,
+                            known_displacement=c * table.centers[:, 0])
+    assert not np.allclose(tilted.force, shifted.force, rtol=1e-3)

@@ -82,7 +82,7 @@ class HertzLaw:
 
 def solve_macro(table: AsperityTable, interaction: PointInteraction, law: HertzLaw, *,
                 penetration: float | None = None, total_force: float | None = None, z_top: float | None = None,
-                tol: float = 1e-10, max_iter: int = 100) -> MacroState:
+                known_displacement: np.ndarray | None = None, tol: float = 1e-10, max_iter: int = 100) -> MacroState:
     """Solve eq. 3 of the seed for the asperity forces, under displacement or load control.
 
     Parameters
@@ -95,13 +95,20 @@ def solve_macro(table: AsperityTable, interaction: PointInteraction, law: HertzL
         Load control: ``sum_k P_k`` [force]; ``delta`` is then an unknown.
     z_top : float, optional
         Height from which ``delta`` is measured [length] (default: the highest summit).
+    known_displacement : ndarray, optional
+        A displacement of the body at each summit that does not depend on the forces sought [length]:
+        the hook for a time-stepping caller (the seed's eq. 4: over a step with a constant pressure rate,
+        the history's displacement is known and the increment solves this elastic problem with the
+        step's effective modulus in ``interaction`` and ``law``).
     tol : float
         Target of :attr:`MacroState.residual`.
     max_iter : int
         Newton iterations at most; the state returned says whether it converged.
     """
-    z = table.summit_height
-    z_top = float(z.max()) if z_top is None else float(z_top)
+    z_top = float(table.summit_height.max()) if z_top is None else float(z_top)
+    # a known displacement lowers the summits it lifts the body above: the same problem, shifted heights
+    z = table.summit_height if known_displacement is None else \
+        table.summit_height - np.asarray(known_displacement, dtype=float)
     load_control = total_force is not None
     if load_control:
         if total_force == 0:

@@ -135,8 +135,12 @@ def window_size(table: AsperityTable, *, grid: Grid, contact_radius: np.ndarray)
 
 def solve_micro(table: AsperityTable, macro: MacroState, law: HertzLaw, E_star: float, interaction: PointInteraction, *,
                 z_top: float, total_force: float | None, tol: float, max_iter: int,
-                local_max_iter: int = 10_000) -> MicroState:
+                known_displacement: np.ndarray | None = None, local_max_iter: int = 10_000) -> MicroState:
     """Refine the macro forces into the pressure field (see the module docstring).
+
+    ``known_displacement`` [length], on the grid, is a displacement of the body that does not depend on
+    the pressure sought (a time-stepping caller's history term, as in :func:`.solve_macro`): it enters
+    every local problem and the gap; the returned ``displacement`` excludes it.
 
     Raises
     ------
@@ -150,7 +154,7 @@ def solve_micro(table: AsperityTable, macro: MacroState, law: HertzLaw, E_star: 
         try:
             return _solve_in_windows(table, macro, law, E_star, interaction, window, z_top=z_top,
                                      total_force=total_force, tol=tol, max_iter=max_iter,
-                                     local_max_iter=local_max_iter)
+                                     known_displacement=known_displacement, local_max_iter=local_max_iter)
         except _WindowTooSmall:  # a contact grew past the macro step's estimate: larger windows
             if window >= table.grid.shape[0]:
                 raise ValueError("mean_pressure/penetration: a local contact fills its whole window") from None
@@ -163,9 +167,12 @@ class _WindowTooSmall(Exception):
 
 def _solve_in_windows(table: AsperityTable, macro: MacroState, law: HertzLaw, E_star: float,
                       interaction: PointInteraction, window: int, *, z_top: float, total_force: float | None,
-                      tol: float, max_iter: int, local_max_iter: int) -> MicroState:
+                      tol: float, max_iter: int, known_displacement: np.ndarray | None,
+                      local_max_iter: int) -> MicroState:
     """:func:`solve_micro` with windows of ``window`` nodes per side."""
     grid, heights = table.grid, table.heights
+    if known_displacement is not None:  # the same problem on shifted heights
+        heights = heights - np.asarray(known_displacement, dtype=float)
     h = grid.spacing[0]
     dA = h * h
     radius = law.contact_radius(macro.local_penetration)
