@@ -31,6 +31,17 @@ VARIABLES: dict[str, dict[str, str]] = {
     "wavenumber": {"units": "rad {length}-1", "long_name": "wavenumber |q|"},
     "psd": {"units": "{length}4", "long_name": "radially averaged power spectral density"},
     "psd_1d": {"units": "{length}3", "long_name": "power spectral density of a profile"},
+    "asperity": {"units": "1", "long_name": "asperity index"},
+    "center_x": {"units": "{length}", "long_name": "asperity summit position along x"},
+    "center_y": {"units": "{length}", "long_name": "asperity summit position along y"},
+    "radius": {"units": "{length}", "long_name": "asperity sphere radius"},
+    "summit_height": {"units": "{length}", "long_name": "asperity summit height above the base"},
+    "force": {"units": "{pressure} {length}2", "long_name": "normal contact force on the asperity"},
+    "macro_force": {"units": "{pressure} {length}2",
+                    "long_name": "normal contact force on the asperity from the macro step (Hertz + point-load interaction)"},
+    "contact_radius": {"units": "{length}", "long_name": "contact radius of the asperity (area-equivalent)"},
+    "local_penetration": {"units": "{length}",
+                          "long_name": "local penetration of the asperity from the macro step (negative: separated)"},
 }
 
 

@@ -185,3 +185,18 @@ rule plot_friction_speed:
         "../envs/contactlib.yaml"
     script:
         "../scripts/plot_friction_speed.py"
+rule plot_two_scale:
+    input:
+        data="results/two_scale.nc",
+    output:
+        report(
+            "results/figures/two_scale.png",
+            caption="../report/two_scale.rst",
+            category="Two-scale method",
+        ),
+    log:
+        "logs/plot/two_scale.log",
+    conda:
+        "../envs/contactlib.yaml"
+    script:
+        "../scripts/plot_two_scale.py"
