@@ -23,17 +23,7 @@ import numpy as np
 
 from ..grid import Grid
 from ..kernels.tensor import surface_green_tensor
-from .statistics import _values_and_grid
-
-
-def _half_spectrum_weights(grid: Grid) -> np.ndarray:
-    """Weights of an rfft half-spectrum in a sum over the full spectrum (2, but 1 for the columns
-    without a mirror image)."""
-    weight = np.full(grid.spectral_shape(), 2.0)
-    weight[..., 0] = 1.0
-    if grid.shape[-1] % 2 == 0:
-        weight[..., -1] = 1.0
-    return weight
+from .statistics import _half_spectrum_weights, _values_and_grid
 
 
 def _along(grid: Grid, velocity) -> np.ndarray:

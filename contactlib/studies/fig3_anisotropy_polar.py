@@ -9,8 +9,9 @@ principal direction ``theta_d``. The seed reports ``gamma_s = 1``, ``gamma_d = 0
 
 from __future__ import annotations
 
-from .. import analysis, surfaces
+from .. import surfaces
 from ..contact import solve
+from ._common import anisotropy_summary
 from ._viscoelastic_scene import SCENE_VARIABLES, material
 
 VARIABLES: dict[str, dict[str, str]] = {**SCENE_VARIABLES, "speed_ratio": {"units": "1", "long_name": "V tau / lambda (lambda: the window)"}}
@@ -34,10 +35,7 @@ def anisotropy_polar_point(*, seed: int, n: int, length: float, hurst: float, sc
               "friction_coefficient_interlocking": float(out.friction_coefficient_interlocking),
               "iterations": float(out.iterations), "residual": float(out.residual)}
     for name, field in (("surface", h), ("displacement", out.displacement)):
-        t = analysis.anisotropy_tensor(field, zeta1, zeta2)
-        M = t.M.values
-        result.update({f"{name}_gamma": float(t.gamma), f"{name}_theta_d": float(t.theta_d),
-                       f"{name}_m_xx": float(M[0, 0]), f"{name}_m_xy": float(M[0, 1]), f"{name}_m_yy": float(M[1, 1])})
+        result.update(anisotropy_summary(name, field, zeta1, zeta2))
     return result
 
 
