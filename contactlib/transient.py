@@ -37,6 +37,7 @@ from .materials import Elastic, material_of
 log = logging.getLogger(__name__)
 
 INITIAL_STATES = ("unloaded", "relaxed")
+MODELS_KEPT = 3
 
 
 class TransientInterrupted(KeyboardInterrupt):
@@ -259,6 +260,7 @@ def solve_reciprocating(
             works.append(float(np.sum(mid * moved.T)))
             energies.append(float(np.sum(record.columns["dissipated_power"]) * dt))
             scale = float(np.sum(np.abs(mid * moved.T))) or 1.0
+            log.info("solve_reciprocating: cycle %d, energy %.6g, loop work %.6g", cycle + 1, energies[-1], works[-1])
             if previous_loop is not None:
                 norm = float(np.linalg.norm(loop)) or 1.0
                 changes.append(max(float(np.linalg.norm(loop - previous_loop)) / norm,
@@ -342,11 +344,14 @@ class _Stepper:
         self.restart_fraction = 0.001
 
     def model(self, E: float):
-        """The body's elastic model at modulus ``E`` (cached: a uniform step has one)."""
+        """The body's elastic model at modulus ``E``: the last few are kept (a uniform step needs one, the
+        first step another), so log-spaced times rebuild it per step and memory stays flat."""
         if E not in self._models:
-            body = body_model(self.grid, material=Elastic(E, self.material.nu), layer=self.layer, friction=0.0,
-                              direction=0.0, tol=self.tol, kernel="spectral", periodic=self.periodic)
-            self._models[E] = body
+            if len(self._models) >= MODELS_KEPT:
+                self._models.pop(next(iter(self._models)))
+            self._models[E] = body_model(self.grid, material=Elastic(E, self.material.nu), layer=self.layer,
+                                         friction=0.0, direction=0.0, tol=self.tol, kernel="spectral",
+                                         periodic=self.periodic)
         return self._models[E]
 
     def predicted(self):
