@@ -11,7 +11,9 @@ Both codes at the same tolerance (``--tol``) and steps. Reported, from one run:
 * the contact area at the last step of each (they part: tamaas relaxes below the long-term solution);
 * one contactlib step over one cold elastic solve of the same scene at the same modulus as the step's
   (``contactlib.solve`` with ``E = E_eff(dt)``, the modulus each step solves with), medians of ``--repeats``;
-* peak RSS of a fresh process running ``--memory-steps`` steps (fields kept at the last step only).
+* peak RSS of a fresh process running ``--memory-steps`` steps (fields kept at the last step only);
+* the exact full-contact test for both codes: a sinusoid (32^2) pressed beyond full contact under a constant
+  load, one branch, the pressure amplitude at 20 tau over its long-term value (exactly 1).
 
 Run: ``python benchmarks/bench_transient.py`` (needs the ``bench`` extra for tamaas).
 """
@@ -88,6 +90,36 @@ def elastic(n, tol, repeats, dt):
     return float(np.median(walls))
 
 
+def full_contact(dt=0.05, end=20.0, n=32):
+    """The exact test beyond full contact: a sinusoid under a constant load, ``E_eff(t) = p_q / (|q| h_q / 2) (1 -
+    nu^2)`` must follow ``E(t)`` to the long-term modulus. Rows ``(nu, G_1, code, E_eff(end) / E_inf)`` for tamaas'
+    MaxwellViscoelastic and contactlib (one branch, tau = 1, long-term E = 1)."""
+    import tamaas as tm
+    tm.set_log_level(tm.LogLevel.error)
+    q, h0 = 2 * np.pi, 1e-3
+    x = np.arange(n) / n
+    heights = h0 * np.cos(q * x)[:, None] * np.ones(n)[None, :]
+    rows = []
+    for nu in (0.0, 0.5):
+        for shear in (0.1, 2.0):
+            E1 = 2 * shear * (1 + nu)
+            pm = 10 * q * h0 * (1 + E1) / (1 - nu**2)  # far beyond full contact
+            model = tm.ModelFactory.createModel(tm.model_type.basic_2d, [1.0, 1.0], [n, n])
+            model.E, model.nu = 1.0, nu
+            solver = tm.MaxwellViscoelastic(model, heights, 1e-12, dt, [shear], [1.0])
+            for _ in range(int(round(end / dt))):
+                solver.solve(pm)
+            theirs = np.array(model.traction).reshape(n, n)
+            times = np.arange(int(round(end / dt)) + 1) * dt
+            out = contactlib.solve_transient(heights, material=contactlib.Viscoelastic(E0=1.0, prony=[(E1, 1.0)], nu=nu),
+                                             times=times, mean_pressure=pm, length=1.0, tol=1e-12)
+            ours = out.pressure.isel(saved_time=-1).values
+            for code, p in (("tamaas", theirs), ("contactlib", ours)):
+                amplitude = np.abs(np.fft.rfft(p[:, 0])[1]) * 2 / n
+                rows.append((nu, shear, code, amplitude / (q * h0 / 2) * (1 - nu**2)))
+    return rows
+
+
 def memory_probe(n, steps, dt):
     """Peak RSS [MiB] of this process after ``steps`` steps (run in a fresh process)."""
     h, pm = scene(n)
@@ -132,6 +164,11 @@ def main():
                                      "--dt", str(args.dt)], capture_output=True, text=True, check=True).stdout)
         rows.append({"memory_steps": steps, "n": args.memory_n, "peak_rss_mib": peak})
         print(f"| {steps} | {peak:.0f} |", flush=True)
+    if not args.no_peer:
+        print("\n| nu | G_1 | code | E_eff(20 tau) / E_inf (exact: 1) |\n|---|---|---|---|")
+        for nu, shear, code, ratio in full_contact():
+            rows.append({"full_contact": code, "nu": nu, "G1": shear, "ratio": ratio})
+            print(f"| {nu} | {shear} | {code} | {ratio:.6f} |", flush=True)
     if args.json:
         with open(args.json, "w") as fh:
             json.dump(rows, fh, indent=1)
