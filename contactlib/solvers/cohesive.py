@@ -1,0 +1,207 @@
+"""Cohesive-zone adhesion: the contact conditions with the adhesive traction as a term.
+
+The total traction is ``p = p_r + a(g)``: a repulsive part ``p_r >= 0``, zero where the gap ``g = K p +
+max h - h - d`` is open, and the adhesive traction ``a(g) = -sigma(g) <= 0`` of the cohesive law
+(:class:`contactlib.Adhesion`). The conditions ``p_r >= 0, g >= 0, p_r g = 0`` are the complementarity
+function ``phi = min(p_r, c g) = 0`` (``c`` an element stiffness, so both parts are pressures), solved
+by a semi-smooth Newton (primal-dual active set) method: on the active set ``C = {p_r > c g}`` the row
+is ``g = 0`` (contact), elsewhere ``p = a(g)`` (the law), linearised with ``a'(g)``. Each Newton system
+goes to GMRES with the body's operator (``K``, periodic or zero-padded, half-space or layer) and, on
+the contact rows, the Fourier preconditioner the constrained CG uses (``operator.inverse_multiplier``).
+Load control adds the approach as unknown and ``mean(p) = P``.
+
+The start is the non-adhesive state of the scene from the existing constrained solver (or a warm
+start). The Maugis law is a step: ``a' = 0``, and Newton then iterates on the zone as on the active set.
+A small range makes the law stiff and the first Newton steps wild; when a solve stalls it is restarted
+by continuation in the range (:data:`CONTINUATION`: solved at ``8, 4, 2, 1`` times the range, each
+warm-started from the last). A solve that does not meet ``tol`` comes back ``converged=False``.
+
+The residual is scale-free, as the non-adhesive solvers': the mean ``|phi| / c`` over the rms height,
+the largest interpenetration and the load error over ``sigma_0 + |P|``.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from collections.abc import Callable
+
+import numpy as np
+from scipy.sparse.linalg import LinearOperator, gmres
+
+from .state import ContactState, height_scale
+
+MAX_NEWTON = 60
+"""Default bound on the Newton iterations of one solve (one range)."""
+
+CONTINUATION = (8.0, 4.0, 2.0, 1.0)
+"""Range multipliers of the continuation a stalled solve restarts with."""
+
+STALL = 12
+"""Newton iterations without halving the best residual that count as a stall."""
+
+
+def solve_cohesive(
+    operator,
+    heights: np.ndarray,
+    *,
+    adhesion,
+    mean_pressure: float | None = None,
+    penetration: float | None = None,
+    tol: float = 1e-8,
+    max_iter: int = MAX_NEWTON,
+    initial_pressure: np.ndarray | None = None,
+    initial_penetration: float | None = None,
+    solve_repulsive: Callable[..., ContactState] | None = None,
+) -> tuple[ContactState, np.ndarray]:
+    """Adhesive contact of a rigid surface with a cohesive law.
+
+    Parameters
+    ----------
+    operator : Compliance
+        The body's normal compliance.
+    heights : ndarray
+        Rigid surface heights [length]; higher points touch first.
+    adhesion : contactlib.Adhesion
+        A cohesive law (``"maugis"`` or ``"exponential"``).
+    mean_pressure, penetration : float
+        Exactly one: the applied mean traction [pressure], adhesive part included (may be negative),
+        or the approach from first contact of the highest point [length] (may be negative).
+    tol : float
+        Target of the scale-free residual (module docstring).
+    max_iter : int
+        Bound on the Newton iterations per range.
+    initial_pressure, initial_penetration : optional
+        Warm start: the total traction [pressure] (and, load control, the approach) of a neighbouring
+        state, e.g. the previous point of a path.
+    solve_repulsive : callable, optional
+        ``solve_repulsive(heights, mean_pressure=, penetration=, tol=, max_iter=, initial_pressure=)``: the
+        scene's non-adhesive constrained solver, for a cold start.
+
+    Returns
+    -------
+    (ContactState, ndarray)
+        The state (``pressure`` the total traction; ``iterations`` the Newton steps, ``outer_iterations``
+        the GMRES iterations) and the repulsive part ``p_r`` [pressure].
+    """
+    load_control = mean_pressure is not None
+    p = None if initial_pressure is None else np.array(initial_pressure, dtype=float)
+    delta = initial_penetration if load_control else penetration
+    if p is None:
+        p, delta = _cold_start(operator, heights, adhesion, mean_pressure, penetration, solve_repulsive)
+    if delta is None:
+        delta = 0.0
+    run = _Newton(operator, heights, adhesion, mean_pressure, penetration, tol, max_iter)
+    result = run(p, delta)
+    if not result[-1]:  # stalled: continuation in the range from the cold (or warm) start
+        law = adhesion
+        p_c, d_c = p, delta
+        for factor in CONTINUATION:
+            law = dataclasses.replace(adhesion, range=adhesion.range * factor)
+            result = _Newton(operator, heights, law, mean_pressure, penetration, tol, max_iter)(p_c, d_c)
+            p_c, d_c = result[0], result[1]
+    p, delta, g, p_r, iterations, krylov, residual, converged = result
+    displacement = g - (heights.max() - heights) + delta
+    state = ContactState(pressure=p, gap=g, displacement=displacement, penetration=float(delta),
+                         mean_pressure=float(p.mean()), iterations=iterations, residual=float(residual),
+                         converged=bool(converged), solver=f"cohesive-newton ({adhesion.model})",
+                         outer_iterations=krylov)
+    return state, p_r
+
+
+def _cold_start(operator, heights, adhesion, mean_pressure, penetration, solve_repulsive):
+    """The non-adhesive state at the same approach (or at the load, if compressive): contact first."""
+    if solve_repulsive is None:
+        return np.zeros_like(heights), (penetration if penetration is not None else 0.0)
+    if penetration is not None:
+        state = solve_repulsive(heights, mean_pressure=None, penetration=float(penetration))
+        return state.pressure, penetration
+    load = max(float(mean_pressure), 0.0)
+    if load == 0.0:  # under tension: start from the contact of the adhesive stress itself
+        load = adhesion.peak_stress * 1e-3
+    state = solve_repulsive(heights, mean_pressure=load, penetration=None)
+    return state.pressure, state.penetration
+
+
+class _Newton:
+    """One semi-smooth Newton solve of the cohesive contact at one range."""
+
+    def __init__(self, operator, heights, adhesion, mean_pressure, penetration, tol, max_iter):
+        self.op, self.law, self.tol, self.max_iter = operator, adhesion, tol, int(max_iter)
+        self.shape, self.n = heights.shape, heights.size
+        self.h0 = heights.max() - heights
+        self.load = mean_pressure
+        self.control = mean_pressure is not None
+        self.sigma0 = adhesion.peak_stress
+        # an element's stiffness: the compliance at the shortest wave, 2 / (E* q_max)
+        self.c = operator.E_star * np.pi / (2 * min(operator.grid.spacing))
+        self.hs = height_scale(heights)
+        self.pscale = self.sigma0 + (abs(mean_pressure) if self.control else 0.0)
+
+    def _slope(self, g):
+        """``a'(g)`` [pressure/length]: the exponential law's; 0 for the Maugis step."""
+        if self.law.model == "exponential":
+            return np.where(g > 0, self.sigma0 / self.law.range * np.exp(-np.maximum(g, 0) / self.law.range), 0.0)
+        return np.zeros(self.shape)
+
+    def _evaluate(self, p, delta):
+        g = self.op(p) + self.h0 - delta
+        p_r = p - self.law.traction(g)
+        active = p_r > self.c * g
+        phi = np.where(active, self.c * g, p_r)
+        residual = float(np.mean(np.abs(phi))) / self.c / self.hs
+        residual = max(residual, float(np.max(np.maximum(-g, 0.0))) / self.hs)
+        if self.control:
+            residual = max(residual, abs(float(p.mean()) - self.load) / self.pscale)
+        return g, p_r, active, phi, residual
+
+    def _stiffness(self, field):
+        self.op.load()[...] = field
+        return self.op.convolve(inverse=True).copy()
+
+    def __call__(self, p, delta):
+        n, shape, c = self.n, self.shape, self.c
+        g, p_r, active, phi, residual = self._evaluate(p, delta)
+        best, best_it, krylov, it = residual, 0, 0, 0
+        for it in range(1, self.max_iter + 1):
+            if residual <= self.tol:
+                it -= 1
+                break
+            if it - best_it > STALL:
+                break
+            on = active.astype(float)
+            off = 1.0 - on
+            slope = self._slope(g)
+            size = n + (1 if self.control else 0)
+
+            def matvec(v):
+                dp = v[:n].reshape(shape)
+                dg = self.op(dp) - (v[n] if self.control else 0.0)
+                rows = (on * c * dg + off * (dp - slope * dg)).ravel()
+                return np.concatenate([rows, [c * dp.mean()]]) if self.control else rows
+
+            def precondition(v):
+                r = v[:n].reshape(shape)
+                z = (off * r + on * self._stiffness(on * r) / c).ravel()
+                return np.concatenate([z, [v[n] / c]]) if self.control else z
+
+            rhs = -phi.ravel()
+            if self.control:
+                rhs = np.concatenate([rhs, [-c * (float(p.mean()) - self.load)]])
+            count = [0]
+
+            def counter(_):
+                count[0] += 1
+
+            step, _ = gmres(LinearOperator((size, size), matvec=matvec, dtype=float), rhs,
+                            M=LinearOperator((size, size), matvec=precondition, dtype=float),
+                            rtol=min(1e-4, max(0.1 * residual, 1e-10)), restart=60, maxiter=20,
+                            callback=counter, callback_type="pr_norm")
+            krylov += count[0]
+            p = p + step[:n].reshape(shape)
+            if self.control:
+                delta = delta + float(step[n])
+            g, p_r, active, phi, residual = self._evaluate(p, delta)
+            if residual < 0.5 * best:
+                best, best_it = residual, it
+        converged = residual <= self.tol
+        return p, delta, g, np.where(active, p_r, 0.0), it, krylov, residual, converged
