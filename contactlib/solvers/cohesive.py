@@ -11,7 +11,7 @@ the contact rows, the Fourier preconditioner the constrained CG uses (``operator
 Load control adds the approach as unknown and ``mean(p) = P``.
 
 The start is the non-adhesive state of the scene from the existing constrained solver (or a warm
-start). The Maugis law is a step: ``a' = 0``, and Newton then iterates on the zone as on the active set.
+start). The Maugis step is a narrow ramp (:data:`contactlib.adhesion.MAUGIS_RAMP`), so Newton sees its edge move.
 A small range makes the law stiff and the first Newton steps wild; when a solve stalls it is restarted
 by continuation in the range (:data:`CONTINUATION`: solved at ``8, 4, 2, 1`` times the range, each
 warm-started from the last). A solve that does not meet ``tol`` comes back ``converged=False``.
@@ -26,7 +26,6 @@ import dataclasses
 from collections.abc import Callable
 
 import numpy as np
-from scipy.sparse.linalg import LinearOperator, gmres
 
 from .state import ContactState, height_scale
 
@@ -35,6 +34,19 @@ MAX_NEWTON = 60
 
 CONTINUATION = (8.0, 4.0, 2.0, 1.0)
 """Range multipliers of the continuation a stalled solve restarts with."""
+
+C_SCALE = 1.0
+"""The complementarity constant ``c`` in units of an element's stiffness ``pi E* / (2 dx)`` (0.1-10 gave
+the same iteration counts on the Maugis sphere)."""
+
+BACKTRACK = 6
+"""Halvings of a Newton step that would multiply the residual by more than :data:`GROWTH`."""
+
+GROWTH = 2.0
+
+NEAR = 1e-4
+"""Backtracking acts only below this residual: far from the answer the first Newton steps must be free
+to move the contact a long way (a cold start at small range failed with it on)."""
 
 STALL = 12
 """Newton iterations without halving the best residual that count as a stall."""
@@ -133,15 +145,9 @@ class _Newton:
         self.control = mean_pressure is not None
         self.sigma0 = adhesion.peak_stress
         # an element's stiffness: the compliance at the shortest wave, 2 / (E* q_max)
-        self.c = operator.E_star * np.pi / (2 * min(operator.grid.spacing))
+        self.c = C_SCALE * operator.E_star * np.pi / (2 * min(operator.grid.spacing))
         self.hs = height_scale(heights)
         self.pscale = self.sigma0 + (abs(mean_pressure) if self.control else 0.0)
-
-    def _slope(self, g):
-        """``a'(g)`` [pressure/length]: the exponential law's; 0 for the Maugis step."""
-        if self.law.model == "exponential":
-            return np.where(g > 0, self.sigma0 / self.law.range * np.exp(-np.maximum(g, 0) / self.law.range), 0.0)
-        return np.zeros(self.shape)
 
     def _evaluate(self, p, delta):
         g = self.op(p) + self.h0 - delta
@@ -170,7 +176,7 @@ class _Newton:
                 break
             on = active.astype(float)
             off = 1.0 - on
-            slope = self._slope(g)
+            slope = self.law.traction_slope(g)
             size = n + (1 if self.control else 0)
 
             def matvec(v):
@@ -187,21 +193,58 @@ class _Newton:
             rhs = -phi.ravel()
             if self.control:
                 rhs = np.concatenate([rhs, [-c * (float(p.mean()) - self.load)]])
-            count = [0]
-
-            def counter(_):
-                count[0] += 1
-
-            step, _ = gmres(LinearOperator((size, size), matvec=matvec, dtype=float), rhs,
-                            M=LinearOperator((size, size), matvec=precondition, dtype=float),
-                            rtol=min(1e-4, max(0.1 * residual, 1e-10)), restart=60, maxiter=20,
-                            callback=counter, callback_type="pr_norm")
-            krylov += count[0]
-            p = p + step[:n].reshape(shape)
-            if self.control:
-                delta = delta + float(step[n])
-            g, p_r, active, phi, residual = self._evaluate(p, delta)
+            step, used = gmres(matvec, precondition, rhs, rtol=min(1e-4, max(0.1 * residual, 1e-10)))
+            krylov += used
+            # near the answer a step that multiplies the residual is cut back (halved up to BACKTRACK times): the
+            # answer an active-set flip at the contact edge can throw a full step far off
+            for halving in range(BACKTRACK + 1):
+                trial_p = p + step[:n].reshape(shape)
+                trial_d = delta + (float(step[n]) if self.control else 0.0)
+                trial = self._evaluate(trial_p, trial_d)
+                if trial[-1] <= GROWTH * residual or residual > NEAR or halving == BACKTRACK:
+                    break
+                step = 0.5 * step
+            p, delta = trial_p, trial_d
+            g, p_r, active, phi, residual = trial
             if residual < 0.5 * best:
                 best, best_it = residual, it
         converged = residual <= self.tol
         return p, delta, g, np.where(active, p_r, 0.0), it, krylov, residual, converged
+
+
+def gmres(matvec, precondition, rhs: np.ndarray, *, rtol: float, restart: int = 40, max_cycles: int = 20
+          ) -> tuple[np.ndarray, int]:
+    """Right-preconditioned restarted GMRES (Saad & Schultz 1986), classical Gram-Schmidt done twice
+    with BLAS: ``(x, iterations)``, ``|rhs - A x| <= rtol |rhs|`` unless the cycles run out."""
+    x = np.zeros_like(rhs)
+    target = rtol * float(np.linalg.norm(rhs))
+    total = 0
+    r = rhs.copy()
+    for _ in range(max_cycles):
+        beta = float(np.linalg.norm(r))
+        if beta <= target or beta == 0.0:
+            break
+        V = np.zeros((restart + 1, rhs.size))
+        Z = np.zeros((restart, rhs.size))
+        H = np.zeros((restart + 1, restart))
+        V[0] = r / beta
+        k = 0
+        for k in range(restart):
+            Z[k] = precondition(V[k])
+            w = matvec(Z[k])
+            for _ in range(2):  # CGS2: one more pass restores orthogonality
+                h = V[: k + 1] @ w
+                w -= h @ V[: k + 1]
+                H[: k + 1, k] += h
+            H[k + 1, k] = float(np.linalg.norm(w))
+            total += 1
+            e1 = np.zeros(k + 2)
+            e1[0] = beta
+            y, *_ = np.linalg.lstsq(H[: k + 2, : k + 1], e1, rcond=None)
+            estimate = float(np.linalg.norm(H[: k + 2, : k + 1] @ y - e1))
+            if H[k + 1, k] <= 1e-14 * beta or estimate <= target:
+                break
+            V[k + 1] = w / H[k + 1, k]
+        x += y @ Z[: k + 1]
+        r = rhs - matvec(x)
+    return x, total

@@ -73,6 +73,7 @@ class EnergyFamily:
         # dx/2 (da d^2 - 2 db d + dc) = 2 w dx
         A, B, C = da, -2 * db, dc - 4 * work
         disc = B * B - 4 * A * C
+        disc = np.where((disc < 0) & (disc > -1e-9 * B * B), 0.0, disc)  # w -> 0: a double root, round-off
         out = np.full(da.shape, np.nan)
         ok = (disc >= 0) & (A > 0)
         root = np.sqrt(np.where(ok, disc, 0.0))

@@ -1,0 +1,228 @@
+"""Adhesive contact against closed forms: Johnson's (1995) wavy profile by both routes, the
+Maugis-Dugdale sphere, the JKR limit, loading-unloading paths, thin layers, and bad input."""
+
+import math
+import warnings
+
+import numpy as np
+import pytest
+import xarray as xr
+
+import contactlib
+from contactlib import Adhesion
+from contactlib.adhesion import CohesiveZoneWarning
+from contactlib.reference import adhesive as ref
+from contactlib.reference import westergaard
+
+# Johnson's wavy profile: wavelength 1, amplitude 0.01, E* = 1, alpha = 0.3
+AMPLITUDE, ALPHA = 0.01, 0.3
+WORK = ALPHA**2 * np.pi**2 * AMPLITUDE**2 / 2
+P_STAR = np.pi * AMPLITUDE
+
+
+def cohesive_law(model, zone):
+    """A law whose process zone pi E* w / (4 sigma_0^2) is ``zone`` long (E* = 1)."""
+    sigma0 = math.sqrt(math.pi * WORK / (4 * zone))
+    return Adhesion(work=WORK, range=WORK / sigma0, model=model)
+
+
+def test_energy_method_matches_johnson_and_westergaard():
+    """The energy balance (eqs 9-11): mean pressure against contact half-width within 1 % of p*, and
+    Westergaard's sin^2 without adhesion."""
+    from contactlib.adhesive_contact import family
+    from contactlib.contact import _setup
+
+    h = contactlib.surfaces.wavy(2048, amplitude=AMPLITUDE)
+    setup = _setup(h, E=1.0, nu=0.0, mean_pressure=None, penetration=0.0, periodic=True, tol=None, max_iter=10,
+                   kernel="spectral", method="cg", length=None, initial_pressure=None, target_error=None, layer=None,
+                   friction=0.0, sliding_direction=0.0, adhesion=Adhesion(work=WORK, model="jkr"))
+    fam = family(setup)
+    m = np.arange(fam.a.size - 1)
+    a = (m + 1) * fam.spacing  # G between domains m and m + 1 acts at this half-width
+    band = (a > 0.05) & (a < 0.4)
+    for work in (WORK, 0.0):
+        d = fam.equilibrium_penetration(work)
+        P = fam.mean_pressure(m, d)
+        expected = ref.johnson_wavy_pressure(a, amplitude=AMPLITUDE, wavelength=1.0, E_star=1.0, work=work)
+        err = np.abs(P - expected)[band] / P_STAR
+        assert err.max() < 0.01, (work, err.max())
+    # and the closed form itself is Westergaard's partial contact at w = 0
+    w0 = westergaard.mean_pressure(0.4, amplitude=AMPLITUDE, wavelength=1.0, E_star=1.0)  # contact fraction 2a
+    assert ref.johnson_wavy_pressure(0.2, amplitude=AMPLITUDE, wavelength=1.0, E_star=1.0, work=0.0) == \
+        pytest.approx(w0, rel=1e-12)
+
+
+@pytest.mark.parametrize("model", ["exponential", "maugis"])
+def test_cohesive_small_range_matches_johnson(model):
+    """The cohesive route, range small (process zone 0.2 % of the wavelength, 16 elements): within 1 % of p*."""
+    h = contactlib.surfaces.wavy(8192, amplitude=AMPLITUDE)
+    law = cohesive_law(model, 0.002)
+    ds = None
+    for d in (0.4, 0.0):  # a warm-started path, as adhesion_curve runs it
+        ds = contactlib.solve(h, E=1.0, nu=0.0, penetration=d * AMPLITUDE, adhesion=law,
+                              initial_pressure=None if ds is None else ds.pressure.values)
+        half_width = float(ds.contact_area) / 2
+        expected = ref.johnson_wavy_pressure(half_width, amplitude=AMPLITUDE, wavelength=1.0, E_star=1.0, work=WORK)
+        assert abs(float(ds.mean_pressure) - expected) / P_STAR < 0.01
+        assert float(ds.mean_pressure) == pytest.approx(float(ds.pressure.mean()), rel=1e-12)
+    assert ds.attrs["converged"] == 1 and ds.attrs["process_zone_elements"] > 3
+
+
+def test_maugis_dugdale_sphere_lambda_one():
+    """Non-periodic sphere at lambda = 1: load against approach within 3 % of Maugis' equations."""
+    R, w, L, n = 1.0, 2.83e-4, 0.45, 128
+    K = 4 / 3
+    lam = 1.0
+    sigma0 = lam / 2 * (np.pi * w * K**2 / R) ** (1 / 3)
+    law = Adhesion(work=w, range=w / sigma0, model="maugis")
+    h = contactlib.surfaces.paraboloid(n, length=L, radius=R)
+    A = np.linspace(0.8, 2.5, 3401)  # the stable branch under displacement control: D grows with A
+    P_ref, D_ref = ref.maugis_load_penetration(A, lam)
+    assert np.all(np.diff(D_ref) > 0)
+    ds = None
+    for d in (0.004, 0.0, -0.004):
+        ds = contactlib.solve(h, E=1.0, nu=0.0, penetration=d, adhesion=law, periodic=False,
+                              initial_pressure=None if ds is None else ds.pressure.values)
+        load = float(ds.mean_pressure) * L * L / (np.pi * w * R)
+        D = d * (K**2 / (np.pi**2 * w**2 * R)) ** (1 / 3)
+        expected = np.interp(D, D_ref, P_ref)
+        assert load == pytest.approx(expected, rel=0.03), (d, load, expected)
+    assert ds.attrs["maugis_parameter"] == pytest.approx(1.0, rel=0.02)
+    assert float(ds.interaction_area) > float(ds.contact_area) > 0
+
+
+def test_adhesion_curve_wavy_both_routes():
+    """Loading-unloading under penetration control: jump-in, pull-off (the most tensile mean pressure,
+    Johnson's minimum within 1 % of p*), hysteresis; the two routes agree."""
+    h = contactlib.surfaces.wavy(1024, amplitude=AMPLITUDE)
+    a = np.linspace(0.01, 0.3, 3000)
+    p_min = ref.johnson_wavy_pressure(a, amplitude=AMPLITUDE, wavelength=1.0, E_star=1.0, work=WORK).min()
+    path = np.linspace(-0.5, 0.6, 45) * AMPLITUDE
+    out = {}
+    for model in ("jkr", "exponential"):
+        law = Adhesion(work=WORK, model="jkr") if model == "jkr" else cohesive_law(model, 0.004)
+        ds = contactlib.adhesion_curve(h, E=1.0, nu=0.0, adhesion=law, penetrations=path)
+        assert ds.sizes["step"] == 2 * path.size - 1 and int(ds.unloading.sum()) == path.size - 1
+        assert float(ds.pull_off_pressure) == pytest.approx(float(ds.mean_pressure.min()))
+        assert abs(float(ds.pull_off_pressure) - p_min) / P_STAR < 0.01
+        assert float(ds.pull_off_penetration) < 0 and float(ds.hysteresis_energy) > 0
+        assert math.isfinite(float(ds.jump_in_penetration)) and int(ds.jump.sum()) >= 2
+        for name in ds.variables:
+            assert "units" in ds[name].attrs and "long_name" in ds[name].attrs, name
+        out[model] = ds
+    # jkr jumps in at touching (d = 0); the cohesive law pulls the surfaces together from a distance
+    assert float(out["exponential"].jump_in_penetration) <= float(out["jkr"].jump_in_penetration) + 1e-12
+
+
+def test_adhesion_curve_load_control_detaches():
+    """Under load control the path stops at pull-off: NaN states, converged 0, reported; no exception."""
+    h = contactlib.surfaces.wavy(512, amplitude=AMPLITUDE)
+    loads = np.linspace(-0.2, 0.3, 11) * P_STAR
+    ds = contactlib.adhesion_curve(h, E=1.0, nu=0.0, adhesion=Adhesion(work=WORK, model="jkr"), mean_pressures=loads)
+    assert int(ds.converged.sum()) < ds.sizes["step"] and "detached" in ds.attrs
+    ok = ds.converged.values == 1
+    assert np.all(ds.mean_pressure.values[ok] >= ref.johnson_wavy_pressure(
+        np.linspace(0.005, 0.45, 2000), amplitude=AMPLITUDE, wavelength=1.0, E_star=1.0, work=WORK).min() - 1e-12)
+
+
+def _pull_off(layer, path):
+    q0 = 2 * np.pi
+    h = contactlib.surfaces.wavy(256, amplitude=2 / q0)
+    law = Adhesion(work=0.05 * np.pi / q0, model="jkr")
+    return contactlib.adhesion_curve(h, E=1.0, nu=0.3, adhesion=law, penetrations=path * 2 / q0, layer=layer)
+
+
+def test_thin_layers_pull_off_trends():
+    """Seed Figure 4 (q0 Lambda = 2, (1 - nu^2) q0 w / (pi E) = 0.05 with E* = E / (1 - nu^2)): the
+    confined layer's pull-off grows as it thins, the remote-pressure layer's falls and its pull-off
+    penetration moves further out."""
+    q0 = 2 * np.pi
+    path = np.linspace(-0.8, 0.6, 71)
+    confined = [float(_pull_off(contactlib.Layer(t / q0, "confined"), path).pull_off_pressure) for t in (8, 2, 1, 0.5)]
+    assert np.all(np.diff(confined) < 0), confined  # more tensile as h falls
+    half = float(_pull_off(None, path).pull_off_pressure)
+    assert confined[0] == pytest.approx(half, rel=0.02)  # thick: the half-space
+    remote = [_pull_off(contactlib.Layer(t / q0, "remote_pressure"), path) for t in (8, 2)]
+    assert float(remote[1].pull_off_pressure) > float(remote[0].pull_off_pressure)
+    assert float(remote[1].pull_off_penetration) < float(remote[0].pull_off_penetration)
+
+
+def test_remote_layer_jumps_to_full_contact_below_threshold():
+    """Under load control a thin remote-pressure layer has no stable partial contact: it jumps to full
+    contact at the first compressive load; a thick one only near full contact."""
+    q0 = 2 * np.pi
+    h = contactlib.surfaces.wavy(256, amplitude=2 / q0)
+    law = Adhesion(work=0.05 * np.pi / q0, model="jkr")
+    loads = np.linspace(0.01, 1.0, 34)
+    jump = {}
+    for t in (0.5, 8):
+        ds = contactlib.adhesion_curve(h, E=1.0, nu=0.3, adhesion=law, mean_pressures=loads,
+                                       layer=contactlib.Layer(t / q0, "remote_pressure"))
+        jump[t] = float(ds.full_contact_pressure)
+    assert jump[0.5] == pytest.approx(loads[0])
+    assert jump[8] > 10 * loads[0]
+
+
+def test_dataset_labels_and_resolution_warning():
+    h = contactlib.surfaces.wavy(256, amplitude=AMPLITUDE)
+    with pytest.warns(CohesiveZoneWarning, match="process zone"):
+        ds = contactlib.solve(h, E=1.0, nu=0.0, penetration=0.3 * AMPLITUDE, adhesion=cohesive_law("exponential", 0.004))
+    for name in ("pressure", "adhesive_pressure", "contact_area", "interaction_area", "mean_pressure"):
+        assert ds[name].attrs["units"] and ds[name].attrs["long_name"]
+    assert float(ds.adhesive_pressure.min()) < 0 and float(ds.adhesive_pressure.max()) == 0
+    assert ds.attrs["adhesion_model"] == "exponential" and ds.attrs["process_zone_elements"] < 3
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        contactlib.solve(h, E=1.0, nu=0.0, penetration=0.3 * AMPLITUDE, adhesion=Adhesion(work=WORK, model="jkr"))
+    # the non-adhesive call is unchanged
+    plain = contactlib.solve(h, E=1.0, nu=0.0, penetration=0.3 * AMPLITUDE)
+    assert "adhesive_pressure" not in plain and "adhesion_model" not in plain.attrs
+
+
+@pytest.mark.parametrize("kwargs, word", [
+    ({"work": -1.0, "range": 1.0}, "work"),
+    ({"work": math.nan, "range": 1.0}, "work"),
+    ({"work": 1.0, "range": 0.0}, "range"),
+    ({"work": 1.0, "range": -1.0}, "range"),
+    ({"work": 1.0}, "range"),
+    ({"work": 1.0, "range": 1.0, "model": "lennard-jones"}, "model"),
+])
+def test_bad_adhesion_named(kwargs, word):
+    with pytest.raises(ValueError, match=word):
+        Adhesion(**kwargs)
+
+
+def test_bad_scene_named():
+    h2 = contactlib.surfaces.wavy(16, amplitude=0.01, dim=2)
+    with pytest.raises(ValueError, match="jkr"):
+        contactlib.solve(h2, E=1.0, nu=0.0, penetration=0.001, adhesion=Adhesion(work=1e-4, model="jkr"))
+    h = contactlib.surfaces.wavy(64, amplitude=0.01)
+    asym = h + 0.001 * np.sin(2 * np.pi * h.x)
+    with pytest.raises(ValueError, match="symmetric"):
+        contactlib.solve(asym, E=1.0, nu=0.0, penetration=0.001, adhesion=Adhesion(work=1e-4, model="jkr"))
+    with pytest.raises(ValueError, match="friction"):
+        contactlib.solve(h, E=1.0, nu=0.0, penetration=0.001, friction=0.3, adhesion=Adhesion(work=1e-4, range=1e-3))
+    with pytest.raises(ValueError, match="adhesion"):
+        contactlib.solve(h, E=1.0, nu=0.0, penetration=0.001, adhesion={"work": 1e-4})
+    with pytest.raises(ValueError, match="penetrations"):
+        contactlib.adhesion_curve(h, E=1.0, nu=0.0, adhesion=Adhesion(work=1e-4, model="jkr"), penetrations=[0.1, 0.0])
+    assert isinstance(Adhesion(work=1.0, model="jkr"), Adhesion)  # range optional for jkr
+
+
+def test_nonconvergence_is_reported():
+    """A cohesive solve that cannot converge in the iterations it is given raises with its residual."""
+    h = contactlib.surfaces.wavy(2048, amplitude=AMPLITUDE)
+    import contactlib.solvers.cohesive as cohesive
+
+    saved = cohesive.MAX_NEWTON
+    try:
+        import contactlib.adhesive_contact as glue
+
+        glue_saved = glue.MAX_NEWTON
+        glue.MAX_NEWTON = 1
+        with pytest.raises(contactlib.ConvergenceError) as err:
+            contactlib.solve(h, E=1.0, nu=0.0, penetration=0.4 * AMPLITUDE, adhesion=cohesive_law("maugis", 0.004))
+        assert err.value.residual > 1e-8 and err.value.dataset.attrs["converged"] == 0
+    finally:
+        cohesive.MAX_NEWTON = saved
+        glue.MAX_NEWTON = glue_saved
