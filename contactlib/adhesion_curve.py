@@ -152,8 +152,7 @@ def _energy_path(setup, adhesion, path, load_control):
     fam = adhesive_contact.family(setup)
     w = adhesion.work
     rows, m = [], -1
-    d_eq = fam.equilibrium_penetration(w)
-    P_eq = fam.mean_pressure(np.arange(d_eq.size), d_eq)
+    _, d_eq, P_eq = fam.equilibrium_curve(w)
     largest = fam.a.size  # the index of the closed window (one past the largest partial domain)
     fam_definite = setup.operator.definite
     for value in path:
@@ -188,7 +187,8 @@ def _energy_path(setup, adhesion, path, load_control):
                 m_new = i - 1
         state = adhesive_contact.energy_state(setup, fam, m_new, d, "")
         area = float(np.count_nonzero(state.in_contact)) / state.in_contact.size
-        jump = _jumped(area, 0.0 if m < 0 else (2 * m + 1) / fam.size, fam.size)
+        before = 0.0 if m < 0 else 1.0 if m >= fam.ends.size else float(fam.ends[m]) / fam.size
+        jump = _jumped(area, before, fam.size)
         rows.append({"penetration": d, "mean_pressure": state.mean_pressure, "contact_area": area,
                      "interaction_area": area, "converged": int(state.converged), "jump": int(bool(rows) and jump)})
         m = m_new

@@ -17,7 +17,7 @@ import xarray as xr
 from .adhesion import Adhesion, scene_attrs
 from .labels import attrs_for
 from .solvers.cohesive import MAX_NEWTON, solve_cohesive
-from .solvers.energy import MAX_POINTS, EnergyFamily, check_symmetric, energy_family
+from .solvers.energy import MAX_POINTS, EnergyFamily, check_symmetric, energy_family, growth_order
 from .solvers.state import ContactState, height_scale
 
 
@@ -37,7 +37,7 @@ class AdhesiveState(ContactState):
     notes: tuple = ()
 
 
-def check(adhesion, values: np.ndarray, *, mean_pressure, penetration, friction, method, periodic) -> None:
+def check(adhesion, values: np.ndarray, *, spacing, mean_pressure, penetration, friction, method, periodic) -> None:
     """Refuse, naming the parameter, what the adhesive solvers do not model."""
     if not isinstance(adhesion, Adhesion):
         raise ValueError(f"adhesion must be a contactlib.Adhesion or None, got {adhesion!r}")
@@ -51,13 +51,7 @@ def check(adhesion, values: np.ndarray, *, mean_pressure, penetration, friction,
     if method != "cg":
         raise ValueError("method: adhesion is solved by its own solvers (method='cg')")
     if adhesion.model == "jkr":
-        if values.ndim != 1:
-            raise ValueError("adhesion model 'jkr' (the energy method) takes 1D profiles only; use 'maugis' or "
-                             "'exponential' on a 2D surface")
-        if values.size > MAX_POINTS:
-            raise ValueError(f"adhesion model 'jkr': the energy method takes at most {MAX_POINTS} points "
-                             f"(a dense compliance matrix), got {values.size}")
-        check_symmetric(values)
+        check_symmetric(values, spacing)
 
 
 def run(setup, adhesion: Adhesion, *, warm_penetration=None) -> AdhesiveState:
@@ -78,11 +72,20 @@ def run(setup, adhesion: Adhesion, *, warm_penetration=None) -> AdhesiveState:
     return AdhesiveState(**vars(state), repulsive_pressure=p_r, in_contact=p_r > 0)
 
 
-def family(setup) -> EnergyFamily:
-    """The energy method's family of contact domains of the scene's profile."""
-    op = setup.operator
-    matrix = op.matrix(np.arange(setup.values.size))
-    return energy_family(matrix, setup.values, setup.grid.spacing[0])
+def family(setup, max_radius: float | None = None) -> EnergyFamily:
+    """The energy method's family of contact domains of the scene (``max_radius`` [length] bounds the
+    largest 2D disc; its elements, at most :data:`MAX_POINTS`, make a dense matrix)."""
+    order, ends = growth_order(setup.values, setup.grid.spacing, periodic=setup.operator.periodic,
+                               max_radius=max_radius)
+    if order.size > MAX_POINTS:
+        keep = int(np.searchsorted(ends, MAX_POINTS, side="right"))
+        if keep < 2:
+            raise ValueError(f"adhesion model 'jkr': the energy method takes at most {MAX_POINTS} elements "
+                             f"in its largest domain")
+        ends = ends[:keep]
+        order = order[: ends[-1]]
+    matrix = setup.operator.matrix(order)
+    return energy_family(matrix, setup.values, setup.grid.element_area, order, ends)
 
 
 def energy_state(setup, fam: EnergyFamily, m: int, penetration: float, note: str) -> AdhesiveState:
@@ -93,12 +96,12 @@ def energy_state(setup, fam: EnergyFamily, m: int, penetration: float, note: str
         p = np.zeros_like(values)
         displacement = np.zeros_like(values)
     else:
-        p = fam.pressure(m, penetration)
-        displacement = fam.matrix @ p
+        p = fam.pressure(m, penetration).reshape(values.shape)
+        displacement = setup.operator(p)
     gap = displacement + h0 - penetration
     closed = np.zeros(values.shape, dtype=bool)
     if m >= 0:
-        closed[fam.order[: 2 * m + 1]] = True
+        closed.flat[fam.domain(m)] = True
     open_gap = np.where(closed, 0.0, gap)
     # the equilibrium holds by construction; what can fail is the gap outside the domain (interpenetration)
     residual = float(np.max(np.maximum(-open_gap, 0.0))) / height_scale(values)
@@ -133,9 +136,7 @@ def _run_energy(setup, adhesion: Adhesion, mean_pressure, penetration) -> Adhesi
         note = (f"global minimum of the free energy over the domains at this approach ({minima.size} stable "
                 f"states: adhesion_curve follows a path)")
         return energy_state(setup, fam, m, penetration, note)
-    d = fam.equilibrium_penetration(w)
-    m = np.arange(d.size)
-    P = fam.mean_pressure(m, d)
+    _, d, P = fam.equilibrium_curve(w)
     # under load control a state is stable where the load grows with the contact
     stable = np.isfinite(P[:-1]) & np.isfinite(P[1:]) & (np.diff(P) > 0)
     candidates = np.flatnonzero(stable & (np.minimum(P[:-1], P[1:]) <= mean_pressure)

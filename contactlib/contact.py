@@ -453,7 +453,7 @@ def _setup(heights, *, E, nu, mean_pressure, penetration, periodic, tol, max_ite
     if adhesion is None:
         _check_loads(mean_pressure, penetration)
     else:
-        adhesive_contact.check(adhesion, values, mean_pressure=mean_pressure, penetration=penetration,
+        adhesive_contact.check(adhesion, values, spacing=grid.spacing, mean_pressure=mean_pressure, penetration=penetration,
                                friction=friction, method=method, periodic=periodic)
     if target_error is not None:
         if tol is not None:

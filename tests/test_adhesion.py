@@ -68,6 +68,33 @@ def test_cohesive_small_range_matches_johnson(model):
     assert ds.attrs["converged"] == 1 and ds.attrs["process_zone_elements"] > 3
 
 
+def test_jkr_sphere_energy_method():
+    """The energy balance on discs about the apex of a non-periodic sphere (the range-free JKR limit):
+    pull-off -3/2 pi w R within 3 %, and load against contact radius within 3 % of it on the branch
+    stable under load control (a > a_c) up to 1.3 a_c, penetration within 3 % of a_c^2 / R."""
+    from contactlib.adhesive_contact import family
+    from contactlib.contact import _setup
+
+    R, w = 1.0, 2.83e-4  # a_c = 0.1 = 26 elements
+    h = contactlib.surfaces.paraboloid(128, length=0.5, radius=R)
+    setup = _setup(h, E=1.0, nu=0.0, mean_pressure=None, penetration=0.0, periodic=False, tol=None, max_iter=10,
+                   kernel="spectral", method="cg", length=None, initial_pressure=None, target_error=None, layer=None,
+                   friction=0.0, sliding_direction=0.0, adhesion=Adhesion(work=w, model="jkr"))
+    fam = family(setup, max_radius=0.14)
+    area, d, mean = fam.equilibrium_curve(w)
+    load = mean * 0.5 * 0.5
+    radius = np.sqrt(area / np.pi)
+    scale = abs(ref.jkr_pull_off(radius=R, work=w))
+    assert np.nanmin(load) == pytest.approx(ref.jkr_pull_off(radius=R, work=w), rel=0.03)
+    a_c = ref.jkr_pull_off_radius(radius=R, E_star=1.0, work=w)
+    stable = (radius > a_c) & (radius < 1.3 * a_c)
+    assert stable.sum() > 5
+    err = np.abs(load - ref.jkr_load(radius, radius=R, E_star=1.0, work=w))[stable] / scale
+    assert err.max() < 0.03, err.max()
+    err_d = np.abs(d - ref.jkr_penetration(radius, radius=R, E_star=1.0, work=w))[stable] / (a_c**2 / R)
+    assert err_d.max() < 0.03, err_d.max()
+
+
 def test_maugis_dugdale_sphere_lambda_one():
     """Non-periodic sphere at lambda = 1: load against approach within 3 % of Maugis' equations."""
     R, w, L, n = 1.0, 2.83e-4, 0.45, 128

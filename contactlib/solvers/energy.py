@@ -6,7 +6,8 @@ The contact domain ``Omega`` is where the gap closes; inside it the traction is 
 a stable state is a local minimum of it.
 
 Here ``Omega`` is one interval of ``2 m + 1`` elements centred on the highest point of a profile
-symmetric about it (a wavy profile, a cylinder): one contact per period. For each ``m`` the closed
+symmetric about it (a wavy profile, a cylinder): one contact per period; or, on a 2D surface of
+revolution (a sphere), the disc of radius ``(m + 1/2) dx`` about its apex (the JKR sphere). For each ``m`` the closed
 domain gives, with ``K`` the compliance matrix on it, ``p = K^-1 (d - h0)`` (``h0 = max h - h``) and
 
     U_m(d) = dx / 2 [d^2 1'K^-1 1 - 2 d 1'K^-1 h0 + h0'K^-1 h0],
@@ -31,35 +32,41 @@ MAX_POINTS = 4096
 
 @dataclass(frozen=True)
 class EnergyFamily:
-    """The contact domains ``m = 0 .. M`` of a symmetric profile and their energy coefficients.
+    """Nested contact domains ``m = 0 .. M`` grown about the highest point and their energy coefficients.
 
-    ``U_m(d) = dx / 2 (a_m d^2 - 2 b_m d + c_m)``; the mean traction over the window is
-    ``(s_m d - t_m) / N`` with ``s_m = 1'K^-1 1`` and ``t_m = 1'K^-1 h0``.
+    Domain ``m`` is the first ``ends[m]`` elements of ``order``. ``U_m(d) = dA / 2 (a_m d^2 - 2 b_m d +
+    c_m)`` with ``a_m = 1'K^-1 1``, ``b_m = 1'K^-1 h0``, ``c_m = h0'K^-1 h0`` on the domain, ``dA`` the
+    element's length (1D) or area (2D); the mean traction over the window is ``(a_m d - b_m) / N``.
     """
 
     a: np.ndarray
     b: np.ndarray
     c: np.ndarray
-    spacing: float
+    element: float
     size: int
     order: np.ndarray
-    """Element indices in the order the domain grows: the centre, then pairs left/right."""
+    ends: np.ndarray
     matrix: np.ndarray
+    """The compliance matrix among the elements of ``order``, in that order."""
     h0: np.ndarray
 
     @property
-    def half_widths(self) -> np.ndarray:
-        """Contact half-width ``(m + 1/2) dx`` of each domain [length]."""
-        return (np.arange(self.a.size) + 0.5) * self.spacing
+    def spacing(self) -> float:
+        """The element's length [length] (1D), for half-widths."""
+        return self.element
+
+    def area(self, m) -> np.ndarray:
+        """Closed area of domain ``m`` [length (1D) or length^2 (2D)]."""
+        return self.ends[np.asarray(m)] * self.element
 
     def elastic_energy(self, penetration) -> np.ndarray:
-        """``U_m(d)`` for every ``m`` [energy per unit width]."""
+        """``U_m(d)`` for every ``m`` [energy per unit width (1D) or energy (2D)]."""
         d = np.asarray(penetration, dtype=float)[..., None]
-        return self.spacing / 2 * (self.a * d**2 - 2 * self.b * d + self.c)
+        return self.element / 2 * (self.a * d**2 - 2 * self.b * d + self.c)
 
     def free_energy(self, penetration, work: float) -> np.ndarray:
-        """``F_m(d) = U_m(d) - w (2 m + 1) dx``."""
-        return self.elastic_energy(penetration) - work * (2 * np.arange(self.a.size) + 1) * self.spacing
+        """``F_m(d) = U_m(d) - w A_m``."""
+        return self.elastic_energy(penetration) - work * self.ends * self.element
 
     def mean_pressure(self, m, penetration) -> np.ndarray:
         """Mean traction over the window [pressure] of domain ``m`` at approach ``d``."""
@@ -67,11 +74,10 @@ class EnergyFamily:
         return (self.a[m] * penetration - self.b[m]) / self.size
 
     def equilibrium_penetration(self, work: float) -> np.ndarray:
-        """For each ``m < M``, the approach at which ``G = (U_{m+1} - U_m) / (2 dx) = w`` with a tensile
-        edge (the root whose edge traction is negative: the JKR crack); NaN where none is."""
+        """For each ``m < M``, the approach at which ``G = (U_{m+1} - U_m) / (A_{m+1} - A_m) = w`` with a
+        tensile edge (the root whose edge traction is negative: the JKR crack); NaN where none is."""
         da, db, dc = np.diff(self.a), np.diff(self.b), np.diff(self.c)
-        # dx/2 (da d^2 - 2 db d + dc) = 2 w dx
-        A, B, C = da, -2 * db, dc - 4 * work
+        A, B, C = da, -2 * db, dc - 2 * work * np.diff(self.ends)
         disc = B * B - 4 * A * C
         disc = np.where((disc < 0) & (disc > -1e-9 * B * B), 0.0, disc)  # w -> 0: a double root, round-off
         out = np.full(da.shape, np.nan)
@@ -81,56 +87,110 @@ class EnergyFamily:
         out[ok] = (-B[ok] - root[ok]) / (2 * A[ok])
         return out
 
+    def equilibrium_curve(self, work: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """The equilibrium states between domains ``m`` and ``m + 1``: closed area (their mean), approach
+        (:meth:`equilibrium_penetration`) and mean traction over the window (the mean of the two domains'
+        at that approach: the edge lies between them). NaN where no tensile-edge root exists."""
+        d = self.equilibrium_penetration(work)
+        m = np.arange(d.size)
+        area = 0.5 * (self.ends[:-1] + self.ends[1:]) * self.element
+        pressure = 0.5 * (self.mean_pressure(m, d) + self.mean_pressure(m + 1, d))
+        return area, d, pressure
+
+    def domain(self, m: int) -> np.ndarray:
+        """Flat indices of the elements of domain ``m``."""
+        return self.order[: self.ends[m]]
+
     def pressure(self, m: int, penetration: float) -> np.ndarray:
-        """The traction field [pressure] of domain ``m`` at approach ``d`` (zero outside it)."""
-        idx = self.order[: 2 * m + 1]
-        K = self.matrix[np.ix_(idx, idx)]
+        """The traction field [pressure] of domain ``m`` at approach ``d`` (zero outside it), flat."""
+        e = int(self.ends[m])
         p = np.zeros(self.size)
-        p[idx] = np.linalg.solve(K, penetration - self.h0[idx])
+        p[self.order[:e]] = np.linalg.solve(self.matrix[:e, :e], penetration - self.h0[self.order[:e]])
         return p
 
+    def displacement(self, pressure: np.ndarray) -> np.ndarray:
+        """``K p`` on the elements the family holds (flat; the others are not needed and left 0)."""
+        u = np.zeros(self.size)
+        u[self.order] = self.matrix @ pressure[self.order]
+        return u
 
-def energy_family(matrix: np.ndarray, heights: np.ndarray, spacing: float, *, max_half_width: int | None = None
-                  ) -> EnergyFamily:
-    """The family of symmetric contact domains of a 1D profile (module docstring).
+
+def growth_order(heights: np.ndarray, spacing: tuple[float, ...], *, periodic: bool,
+                 max_radius: float | None = None) -> tuple[np.ndarray, np.ndarray]:
+    """Elements in the order the domain grows about the highest point, and the nested domains' sizes.
+
+    1D: the centre, then pairs left and right (``2 m + 1`` elements). 2D: by distance from the apex, the
+    domains the discs of radius ``(m + 1/2) dx`` (periodic distance where ``periodic``).
+    """
+    n = heights.size
+    apex = np.unravel_index(int(np.argmax(heights)), heights.shape)
+    if heights.ndim == 1:
+        i0 = apex[0]
+        largest = (n - 2) // 2
+        if max_radius is not None:
+            largest = min(largest, int(max_radius / spacing[0]))
+        order = [i0]
+        for k in range(1, largest + 1):
+            order += [(i0 - k) % n, (i0 + k) % n]
+        return np.array(order), 2 * np.arange(largest + 1) + 1
+    offsets = []
+    for axis, (size, dx) in enumerate(zip(heights.shape, spacing)):
+        k = np.arange(size) - apex[axis]
+        if periodic:
+            k = (k + size // 2) % size - size // 2
+        offsets.append(k * dx)
+    dist = np.sqrt(offsets[0][:, None] ** 2 + offsets[1][None, :] ** 2).ravel()
+    dx = max(spacing)
+    limit = (min(heights.shape) // 2 - 1) * dx if max_radius is None else max_radius
+    order = np.argsort(dist, kind="stable")
+    order = order[dist[order] <= limit]
+    radii = (np.arange(int(limit / dx)) + 0.5) * dx
+    ends = np.searchsorted(dist[order], radii, side="right")
+    return order, ends[ends > 0]
+
+
+def energy_family(matrix: np.ndarray, heights: np.ndarray, element: float, order: np.ndarray,
+                  ends: np.ndarray) -> EnergyFamily:
+    """The family of nested contact domains of a profile or axisymmetric surface (module docstring).
 
     Parameters
     ----------
     matrix : ndarray
-        The compliance matrix ``K[i, j]`` [length/pressure], displacement at ``i`` of a unit pressure on
-        element ``j`` (:meth:`contactlib.operators.Compliance.matrix`).
+        The compliance matrix [length/pressure] among the elements ``order``, in that order: the
+        displacement at one of a unit pressure on another (:meth:`contactlib.operators.Compliance.matrix`).
     heights : ndarray
-        The profile [length], symmetric about its highest point.
-    spacing : float
-        Element length [length].
-    max_half_width : int, optional
-        Largest ``m`` (default: the domain reaches the window less one element).
+        The surface [length].
+    element : float
+        Element length (1D) or area (2D).
+    order, ends : ndarray
+        From :func:`growth_order`.
     """
-    n = heights.size
-    i0 = int(np.argmax(heights))
-    h0 = heights.max() - heights
-    largest = (n - 2) // 2 if max_half_width is None else int(max_half_width)
-    order = [i0]
-    for k in range(1, largest + 1):
-        order += [(i0 - k) % n, (i0 + k) % n]
-    order = np.array(order)
+    h0 = (heights.max() - heights).ravel()
     # the leading blocks of the Cholesky factor of K in growth order are the factors of every domain
-    L = np.linalg.cholesky(matrix[np.ix_(order, order)])
+    L = np.linalg.cholesky(matrix)
     y = solve_triangular(L, np.ones(order.size), lower=True, check_finite=False)  # L^-1 1
     z = solve_triangular(L, h0[order], lower=True, check_finite=False)  # L^-1 h0
-    ends = 2 * np.arange(largest + 1) + 1
     a, b, c = np.cumsum(y * y)[ends - 1], np.cumsum(y * z)[ends - 1], np.cumsum(z * z)[ends - 1]
-    return EnergyFamily(a=a, b=b, c=c, spacing=float(spacing), size=n, order=order, matrix=matrix, h0=h0)
+    return EnergyFamily(a=a, b=b, c=c, element=float(element), size=heights.size, order=order,
+                        ends=np.asarray(ends), matrix=matrix, h0=h0)
 
 
-def check_symmetric(heights: np.ndarray) -> None:
-    """Refuse a profile that is not symmetric about its highest point (one contact per period)."""
-    n = heights.size
-    i0 = int(np.argmax(heights))
-    k = np.arange(1, n // 2)
-    left, right = heights[(i0 - k) % n], heights[(i0 + k) % n]
+def check_symmetric(heights: np.ndarray, spacing: tuple[float, ...]) -> None:
+    """Refuse a surface that is not symmetric about its highest point: a profile symmetric about it (one
+    contact interval per period) or a surface of revolution about it (one disc)."""
     scale = float(np.ptp(heights)) or 1.0
-    if np.max(np.abs(left - right)) > 1e-9 * scale:
-        raise ValueError("adhesion model 'jkr' (energy method) takes a 1D profile symmetric about its highest "
-                         "point (one contact interval per period); use a cohesive model ('maugis' or "
-                         "'exponential') for other surfaces")
+    apex = np.unravel_index(int(np.argmax(heights)), heights.shape)
+    if heights.ndim == 1:
+        n = heights.size
+        k = np.arange(1, n // 2)
+        left, right = heights[(apex[0] - k) % n], heights[(apex[0] + k) % n]
+        bad = np.max(np.abs(left - right)) > 1e-9 * scale
+    else:
+        r = min(min(apex[0], heights.shape[0] - 1 - apex[0]), min(apex[1], heights.shape[1] - 1 - apex[1]))
+        block = heights[apex[0] - r: apex[0] + r + 1, apex[1] - r: apex[1] + r + 1]
+        bad = r < 1 or any(np.max(np.abs(block - t)) > 1e-9 * scale
+                           for t in (block[::-1], block[:, ::-1], block.T))
+    if bad:
+        raise ValueError("adhesion model 'jkr' (energy method) takes a surface symmetric about its highest "
+                         "point: a profile (one contact interval per period) or a surface of revolution (one "
+                         "disc); use a cohesive model ('maugis' or 'exponential') for other surfaces")
