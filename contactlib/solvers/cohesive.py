@@ -12,9 +12,10 @@ Load control adds the approach as unknown and ``mean(p) = P``.
 
 The start is the non-adhesive state of the scene from the existing constrained solver (or a warm
 start). The Maugis step is a narrow ramp (:data:`contactlib.adhesion.MAUGIS_RAMP`), so Newton sees its edge move.
-A small range makes the law stiff and the first Newton steps wild; when a solve stalls it is restarted
-by continuation in the range (:data:`CONTINUATION`: solved at ``8, 4, 2, 1`` times the range, each
-warm-started from the last). A solve that does not meet ``tol`` comes back ``converged=False``.
+A strong or short-ranged law makes the first Newton steps wild (the active set swings by thousands
+of points on a rough surface); when a solve stalls it is restarted from the non-adhesive state by
+continuation in the work of adhesion (``w / 16`` first, doubled after each converged stage, bisected
+back after a failed one: :func:`_continuation`). A solve that does not meet ``tol`` comes back ``converged=False``.
 
 The residual is scale-free, as the non-adhesive solvers': the mean ``|phi| / c`` over the rms height,
 the largest interpenetration and the load error over ``sigma_0 + |P|``.
@@ -32,8 +33,11 @@ from .state import ContactState, height_scale
 MAX_NEWTON = 60
 """Default bound on the Newton iterations of one solve (one range)."""
 
-CONTINUATION = (8.0, 4.0, 2.0, 1.0)
-"""Range multipliers of the continuation a stalled solve restarts with."""
+FIRST_FRACTION = 1.0 / 16
+"""The fraction of the work of adhesion a stalled solve's continuation starts from."""
+
+STAGES = 16
+"""Bound on the Newton solves of that continuation."""
 
 C_SCALE = 1.0
 """The complementarity constant ``c`` in units of an element's stiffness ``pi E* / (2 dx)`` (0.1-10 gave
@@ -104,13 +108,9 @@ def solve_cohesive(
         delta = 0.0
     run = _Newton(operator, heights, adhesion, mean_pressure, penetration, tol, max_iter)
     result = run(p, delta)
-    if not result[-1]:  # stalled: continuation in the range from the cold (or warm) start
-        law = adhesion
-        p_c, d_c = p, delta
-        for factor in CONTINUATION:
-            law = dataclasses.replace(adhesion, range=adhesion.range * factor)
-            result = _Newton(operator, heights, law, mean_pressure, penetration, tol, max_iter)(p_c, d_c)
-            p_c, d_c = result[0], result[1]
+    if not result[-1]:  # stalled: continuation in the work of adhesion from the cold start
+        result = _continuation(operator, heights, adhesion, mean_pressure, penetration, tol, max_iter,
+                               *_cold_start(operator, heights, adhesion, mean_pressure, penetration, solve_repulsive))
     p, delta, g, p_r, iterations, krylov, residual, converged = result
     displacement = g - (heights.max() - heights) + delta
     state = ContactState(pressure=p, gap=g, displacement=displacement, penetration=float(delta),
@@ -118,6 +118,24 @@ def solve_cohesive(
                          converged=bool(converged), solver=f"cohesive-newton ({adhesion.model})",
                          outer_iterations=krylov)
     return state, p_r
+
+
+def _continuation(operator, heights, adhesion, mean_pressure, penetration, tol, max_iter, p, delta):
+    """Newton along ``w -> f w``, ``f`` from :data:`FIRST_FRACTION` to 1: doubled after a converged stage,
+    moved halfway back towards the last converged one after a failed stage (at most :data:`STAGES`)."""
+    done, f, result = 0.0, FIRST_FRACTION, None
+    for _ in range(STAGES):
+        law = dataclasses.replace(adhesion, work=adhesion.work * f)
+        trial = _Newton(operator, heights, law, mean_pressure, penetration, tol, max_iter)(p, delta)
+        if trial[-1]:
+            p, delta, done, result = trial[0], trial[1], f, trial
+            if f == 1.0:
+                return trial
+            f = min(1.0, 2.0 * f)
+        else:
+            result = result if result is not None and done == 1.0 else trial
+            f = 0.5 * (done + f)
+    return trial if done < 1.0 else result
 
 
 def _cold_start(operator, heights, adhesion, mean_pressure, penetration, solve_repulsive):
