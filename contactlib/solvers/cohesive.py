@@ -36,7 +36,7 @@ MAX_NEWTON = 60
 FIRST_FRACTION = 1.0 / 16
 """The fraction of the work of adhesion a stalled solve's continuation starts from."""
 
-STAGES = 16
+STAGES = 8
 """Bound on the Newton solves of that continuation."""
 
 C_SCALE = 1.0

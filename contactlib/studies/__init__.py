@@ -43,7 +43,7 @@ from .speed_vs_error import (REFERENCE_FLOOR, REFERENCE_MAX_ITER, SCENES, rough_
 from .validation import validation_point
 
 STUDY_MODULES = ("validation", "area_load", "anisotropy", "speed_vs_error", "fig5_friction_area",
-                 "fig6a_interlocking", "measured_area_load")
+                 "fig6a_interlocking", "measured_area_load", "fig4_adhesive_layers")
 """The study modules of this package, in registry order; each module's name is its study's name."""
 
 

@@ -117,3 +117,20 @@ rule plot_fig6a_interlocking:
         "../envs/contactlib.yaml"
     script:
         "../scripts/plot_fig6a_interlocking.py"
+
+
+rule plot_fig4_adhesive_layers:
+    input:
+        data="results/fig4_adhesive_layers.nc",
+    output:
+        report(
+            "results/figures/fig4_adhesive_layers.png",
+            caption="../report/fig4_adhesive_layers.rst",
+            category="Adhesion on thin layers",
+        ),
+    log:
+        "logs/plot/fig4_adhesive_layers.log",
+    conda:
+        "../envs/contactlib.yaml"
+    script:
+        "../scripts/plot_fig4_adhesive_layers.py"
