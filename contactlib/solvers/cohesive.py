@@ -13,7 +13,8 @@ Load control adds the approach as unknown and ``mean(p) = P``.
 The start is the non-adhesive state of the scene from the existing constrained solver (or a warm
 start). The Maugis step is a narrow ramp (:data:`contactlib.adhesion.MAUGIS_RAMP`), so Newton sees its edge move.
 A strong or short-ranged law makes the first Newton steps wild (the active set swings by thousands
-of points on a rough surface); when a solve stalls it is restarted from the non-adhesive state by
+of points on a rough surface); when a solve stalls it is restarted by continuation in the range
+(:data:`RANGES`, from its own start), and if that stalls too, from the non-adhesive state by
 continuation in the work of adhesion (``w / 16`` first, doubled after each converged stage, bisected
 back after a failed one: :func:`_continuation`). A solve that does not meet ``tol`` comes back ``converged=False``.
 
@@ -33,10 +34,13 @@ from .state import ContactState, height_scale
 MAX_NEWTON = 60
 """Default bound on the Newton iterations of one solve (one range)."""
 
+RANGES = (8.0, 4.0, 2.0, 1.0)
+"""Range multipliers of the first continuation a stalled solve restarts with (from its own start)."""
+
 FIRST_FRACTION = 1.0 / 16
 """The fraction of the work of adhesion a stalled solve's continuation starts from."""
 
-STAGES = 8
+STAGES = 16
 """Bound on the Newton solves of that continuation."""
 
 C_SCALE = 1.0
@@ -108,7 +112,13 @@ def solve_cohesive(
         delta = 0.0
     run = _Newton(operator, heights, adhesion, mean_pressure, penetration, tol, max_iter)
     result = run(p, delta)
-    if not result[-1]:  # stalled: continuation in the work of adhesion from the cold start
+    if not result[-1]:  # stalled: continuation in the range (8, 4, 2, 1 times), warm-started stage to stage
+        p_c, d_c = p, delta
+        for factor in RANGES:
+            law = dataclasses.replace(adhesion, range=adhesion.range * factor)
+            result = _Newton(operator, heights, law, mean_pressure, penetration, tol, max_iter)(p_c, d_c)
+            p_c, d_c = result[0], result[1]
+    if not result[-1]:  # still stalled: continuation in the work of adhesion from the cold start
         result = _continuation(operator, heights, adhesion, mean_pressure, penetration, tol, max_iter,
                                *_cold_start(operator, heights, adhesion, mean_pressure, penetration, solve_repulsive))
     p, delta, g, p_r, iterations, krylov, residual, converged = result
