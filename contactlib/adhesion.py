@@ -59,7 +59,8 @@ class Adhesion:
         ``w / range`` acts, or the decay length of the exponential law. Ignored (optional) for ``"jkr"``.
     model : {"maugis", "exponential", "jkr"}
         Cohesive law inside the constrained solver, or ``"jkr"``: the range-free energy balance
-        (1D symmetric profiles, :mod:`contactlib.solvers.energy`).
+        (a profile symmetric about its highest point or a surface of revolution,
+        :mod:`contactlib.solvers.energy`).
 
     Raises
     ------

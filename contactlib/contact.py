@@ -195,7 +195,8 @@ def solve(
         a profile slides along ``+x`` (give 0, or pi to slide along ``-x``).
     adhesion : contactlib.Adhesion, optional
         An adhesive interface (:mod:`contactlib.adhesion`): a cohesive law inside the contact solve, or
-        ``"jkr"``, the energy balance (1D profiles symmetric about their highest point). Frictionless;
+        ``"jkr"``, the energy balance (a profile symmetric about its highest point, or a surface of
+        revolution). Frictionless;
         ``mean_pressure`` (the applied traction, adhesive part included) and ``penetration`` may then be
         negative. Adds ``adhesive_pressure`` (the tensile part of ``pressure``) and ``interaction_area``;
         ``contact_area`` is the repulsive (closed) area (:mod:`contactlib.adhesive_contact`).

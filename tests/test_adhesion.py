@@ -223,6 +223,11 @@ def test_bad_scene_named():
     h2 = contactlib.surfaces.wavy(16, amplitude=0.01, dim=2)
     with pytest.raises(ValueError, match="jkr"):
         contactlib.solve(h2, E=1.0, nu=0.0, penetration=0.001, adhesion=Adhesion(work=1e-4, model="jkr"))
+    x = np.arange(32) / 32 - 0.5
+    pyramid = -(np.abs(x)[:, None] + np.abs(x)[None, :]) * 0.01  # symmetric, but no surface of revolution
+    with pytest.raises(ValueError, match="revolution"):
+        contactlib.solve(pyramid, E=1.0, nu=0.0, penetration=0.001, periodic=False,
+                         adhesion=Adhesion(work=1e-4, model="jkr"))
     h = contactlib.surfaces.wavy(64, amplitude=0.01)
     asym = h + 0.001 * np.sin(2 * np.pi * h.x)
     with pytest.raises(ValueError, match="symmetric"):

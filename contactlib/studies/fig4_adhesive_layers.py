@@ -47,9 +47,14 @@ def _path(layer_base: str, scaled_layer_thickness: float, ladder: tuple, n: int,
 
 
 def adhesive_layer_point(*, layer_base: str, scaled_layer_thickness: float, scaled_penetration: float, branch: str,
-                         scaled_penetration_ladder, n: int, scaled_amplitude: float, scaled_work: float, E: float,
-                         nu: float, **_solver) -> dict:
-    """One state of the path of one layer: ``branch`` is ``"loading"`` or ``"unloading"``."""
+                         n: int, scaled_amplitude: float, scaled_work: float, E: float,
+                         nu: float, scaled_penetration_ladder=None, **_solver) -> dict:
+    """One state of the path of one layer: ``branch`` is ``"loading"`` or ``"unloading"``;
+    ``scaled_penetration_ladder``, the whole path (the workflow passes it: ``ladder_dim``), is required, as
+    a state depends on the path that led to it."""
+    if scaled_penetration_ladder is None or float(scaled_penetration) not in \
+            [float(v) for v in scaled_penetration_ladder]:
+        raise ValueError("scaled_penetration_ladder: the whole path of penetrations, holding this one, is needed")
     if branch not in ("loading", "unloading"):
         raise ValueError(f"branch must be 'loading' or 'unloading', got {branch!r}")
     ladder = tuple(sorted(float(v) for v in scaled_penetration_ladder))
