@@ -9,9 +9,11 @@ branch ends the state jumps, and the jump is recorded:
   whose solve fails is retried from the non-adhesive state and from the open one; if those fail too, the step is kept with ``converged = 0`` and NaN scalars and
   the path goes on (it never raises). Under load control, beyond the pull-off there is no
   equilibrium: those steps are NaN, ``converged = 0``, and ``attrs['detached']`` says from where.
-* ``"jkr"`` (the energy method): the state is the domain reached by descending the free energy
-  ``F_m(d)`` from the previous domain (:mod:`contactlib.solvers.energy`): it leaves a domain exactly
-  where its local minimum disappears.
+* ``"jkr"`` (the energy method): the state is the domain reached from the previous domain by moving its
+  edge (:meth:`contactlib.solvers.energy.EnergyFamily.descend`): it grows where the approach exceeds the
+  tensile Griffith root of ``G = w`` and shrinks below the previous one's, so it leaves a domain exactly
+  where its local minimum of ``F_m(d)`` disappears, and never descends into smaller, interpenetrating
+  domains after a large step.
 
 Reported (Clarifications, "Adhesion"): ``pull_off_pressure``, the most tensile mean pressure along the
 path (under penetration control, the pull-off force of load control); ``pull_off_penetration``, the
@@ -33,12 +35,14 @@ from . import adhesive_contact
 from .adhesion import Adhesion
 from .contact import _setup, periodic_of
 from .labels import attrs_for
+from .materials import material_of
+
 
 def adhesion_curve(
     heights,
     *,
-    E: float,
-    nu: float,
+    E: float | None = None,
+    nu: float | None = None,
     adhesion: Adhesion,
     penetrations=None,
     mean_pressures=None,
@@ -49,6 +53,7 @@ def adhesion_curve(
     length=None,
     length_unit: str = "m",
     pressure_unit: str = "Pa",
+    material=None,
 ) -> xr.Dataset:
     """Adhesive contact along a loading-unloading path.
 
@@ -57,7 +62,10 @@ def adhesion_curve(
     heights : xarray.DataArray or ndarray
         Rigid surface heights [length] as for :func:`contactlib.solve` (an ndarray needs ``length``).
     E, nu : float
-        Young's modulus [pressure] and Poisson ratio.
+        Young's modulus [pressure] and Poisson ratio: the shorthand for ``material=contactlib.Elastic(E, nu)``.
+    material : contactlib.Elastic or contactlib.Viscoelastic, optional
+        The body's material instead of ``E, nu``; a viscoelastic body is taken relaxed (``E0``): the path is
+        quasi-static.
     adhesion : contactlib.Adhesion
         The interface.
     penetrations : sequence of float
@@ -88,10 +96,10 @@ def adhesion_curve(
     unloading = np.concatenate([np.zeros(values.size), np.ones(values.size - 1)]).astype(int)
     periodic = periodic_of(heights, periodic)
     first = {"mean_pressure": float(path[0])} if load_control else {"penetration": float(path[0])}
-    setup = _setup(heights, E=E, nu=nu, periodic=periodic, tol=tol, max_iter=10_000, kernel=kernel, method="cg",
-                   length=length, initial_pressure=None, target_error=None, layer=layer, friction=0.0,
-                   sliding_direction=0.0, adhesion=adhesion, **({"mean_pressure": None, "penetration": None}
-                                                                   | first))
+    setup = _setup(heights, material=material_of(material, E, nu), periodic=periodic, tol=tol, max_iter=10_000,
+                   kernel=kernel, method="cg", length=length, initial_pressure=None, target_error=None, layer=layer,
+                   friction=0.0, sliding_direction=None, sliding_velocity=None, adhesion=adhesion,
+                   **({"mean_pressure": None, "penetration": None} | first))
     start = time.perf_counter()
     if adhesion.model == "jkr":
         rows = _energy_path(setup, adhesion, path, load_control)
@@ -174,17 +182,7 @@ def _energy_path(setup, adhesion, path, load_control):
                 continue
         else:
             d = float(value)
-            if m < 0 and d < 0:  # open and apart: without a range nothing pulls the surfaces together
-                m_new = -1
-            else:
-                F = np.concatenate([[0.0 if d < 0 else np.inf], fam.free_energy(d, w)])
-                i = m + 1 if m >= 0 else 1
-                while True:  # descent over the neighbouring domains, from the previous one
-                    best = min((j for j in (i - 1, i, i + 1) if 0 <= j < F.size), key=lambda j: F[j])
-                    if best == i:
-                        break
-                    i = best
-                m_new = i - 1
+            m_new = fam.descend(m if m < largest else largest - 1, d, w)
         state = adhesive_contact.energy_state(setup, fam, m_new, d, "")
         area = float(np.count_nonzero(state.in_contact)) / state.in_contact.size
         before = 0.0 if m < 0 else 1.0 if m >= fam.ends.size else float(fam.ends[m]) / fam.size

@@ -112,28 +112,14 @@ def energy_state(setup, fam: EnergyFamily, m: int, penetration: float, note: str
                          in_contact=closed, notes=(note,))
 
 
-def stable_domains(fam: EnergyFamily, work: float, penetration: float) -> np.ndarray:
-    """The local minima of ``F_m(d)`` over ``m`` (``-1`` for the open state, admissible for ``d < 0``)."""
-    F = fam.free_energy(penetration, work)
-    if penetration < 0:
-        F = np.concatenate([[0.0], F])
-        offset = 1
-    else:
-        offset = 0
-    left = np.concatenate([[np.inf], F[:-1]])
-    right = np.concatenate([F[1:], [np.inf]])
-    minima = np.flatnonzero((F <= left) & (F < right))
-    return minima - offset
-
-
 def _run_energy(setup, adhesion: Adhesion, mean_pressure, penetration) -> AdhesiveState:
     fam = family(setup)
     w = adhesion.work
     if penetration is not None:
-        minima = stable_domains(fam, w, penetration)
+        minima = fam.stable_domains(penetration, w)
         F = np.concatenate([[0.0], fam.free_energy(penetration, w)])
         m = int(minima[np.argmin(F[minima + 1])])
-        note = (f"global minimum of the free energy over the domains at this approach ({minima.size} stable "
+        note = (f"least free energy among the stable domains at this approach ({minima.size} stable "
                 f"states: adhesion_curve follows a path)")
         return energy_state(setup, fam, m, penetration, note)
     _, d, P = fam.equilibrium_curve(w)

@@ -8,9 +8,15 @@ The rule, in one place:
   ``q = 0`` compliance kept: a confined compressible layer's uniform compression fixes where the
   penetration is measured from);
 * the normal-tangential coupling is left out where ``friction = 0`` or where ``friction * |c(q)| /
-  Czz(q) <= 0.1 tol`` at every wavevector (``nu = 0.5`` on a half-space: exactly 0).
+  Czz(q) <= 0.1 tol`` at every wavevector (``nu = 0.5`` on a half-space: exactly 0);
+* a viscoelastic body in steady sliding is modelled elastic, with its relaxed modulus ``E0`` (or its
+  glassy ``E_inf``), where ``|E*(q . V) - E0| <= 0.1 tol E0`` (or ``E_inf``) at every non-zero
+  wavevector of the grid (the complex modulus, not its magnitude: the loss modulus moves first); at
+  rest it is relaxed. Otherwise every multiplier is the elastic one times
+  :func:`contactlib.kernels.viscoelastic.steady_sliding_factor`: the real, even part of the normal
+  operator is its symmetric part and the imaginary, odd part its skew part, as friction's.
 
-The choice is recorded in the dataset's attrs (``body``, ``coupling``, ``model``).
+The choice is recorded in the dataset's attrs (``body``, ``coupling``, ``model``, ``material_model``).
 """
 
 from __future__ import annotations
@@ -18,12 +24,17 @@ from __future__ import annotations
 import dataclasses
 import math
 from dataclasses import dataclass
+from functools import partial
 
 import numpy as np
 
 from .grid import Grid
 from .kernels.layer import BASES, zero_mode_compliance
+from .kernels.elastic import halfspace_love_multiplier
 from .kernels.tensor import SurfaceGreenTensor, halfspace_coupling_influence, surface_green_tensor
+from .kernels.viscoelastic import (modulus_deviation, real_where_self_conjugate, sliding_factor,
+                                   steady_sliding_factor)
+from .materials import Elastic
 from .operators import Compliance, Coupling
 
 REDUCTION_FRACTION = 0.1
@@ -61,35 +72,50 @@ class Layer:
 
 @dataclass
 class BodyModel:
-    """What :func:`contactlib.solve` runs: the symmetric compliance, the skew coupling (or None), the
-    tensor for post-processing (periodic only) and the attrs naming the model."""
+    """What :func:`contactlib.solve` runs: the symmetric compliance, the skew part (friction coupling and
+    the viscoelastic loss part; or None), the tensor for post-processing (periodic only; viscoelastic:
+    complex, times :attr:`factor`) and the attrs naming the model."""
 
     compliance: Compliance
     coupling: Coupling | None
     tensor: SurfaceGreenTensor | None
     attrs: dict
+    factor: np.ndarray | None = None
+    """The viscoelastic factor of every multiplier (:func:`contactlib.kernels.viscoelastic.steady_sliding_factor`),
+    None for an elastic model."""
 
 
-def body_model(grid: Grid, *, E: float, nu: float, layer: Layer | None, friction: float, direction: float,
-               tol: float, kernel: str, periodic: bool) -> BodyModel:
-    """The compliance and coupling of a scene, reduced as the module docstring says."""
-    E_star = E / (1 - nu**2)
+def body_model(grid: Grid, *, material, layer: Layer | None, friction: float, direction: float,
+               tol: float, kernel: str, periodic: bool, velocity=None) -> BodyModel:
+    """The compliance and skew part of a scene, reduced as the module docstring says.
+
+    ``material`` is a :class:`contactlib.materials.Elastic` or ``Viscoelastic``; ``velocity`` [length/time]
+    the steady sliding velocity of the rigid surface (None: no motion, the material relaxed).
+    """
+    nu = float(material.nu)
     limit = REDUCTION_FRACTION * tol
     attrs = {"friction": float(friction), "sliding_direction": float(direction)}
+    factor, E, note_material = _material_factor(grid, material, velocity, limit, attrs)
+    E_star = E / (1 - nu**2)
     if layer is not None:
         attrs.update(layer_thickness=float(layer.thickness), layer_base=layer.base)
-    if not periodic:  # zero-padded half-space (layers are refused before this point)
+    if not periodic:  # zero-padded half-space (layers and steady viscoelastic sliding are refused before)
         coupled = friction > 0 and nu < 0.5
         coupling = Coupling(grid, periodic=False, friction=friction,
                             influence=halfspace_coupling_influence(grid, E, nu, direction)) if coupled else None
         attrs.update(body="half-space", coupling="normal-tangential" if coupled else "none",
-                     model="half-space" + (", Coulomb friction coupled" if coupled else ""))
+                     model="half-space" + (", Coulomb friction coupled" if coupled else "") + note_material)
         return BodyModel(Compliance(grid, E_star=E_star, kernel=kernel, periodic=False), coupling, None, attrs)
 
-    if layer is None and friction == 0:  # the frictionless half-space: no tensor built, none held during the solve
-        attrs.update(body="half-space", coupling="none", model="half-space")
+    if layer is None and friction == 0 and factor is None:
+        # the frictionless elastic half-space: no tensor built, none held during the solve
+        attrs.update(body="half-space", coupling="none", model="half-space" + note_material)
         return BodyModel(Compliance(grid, E_star=E_star, kernel=kernel, periodic=True), None, None, attrs)
     half = surface_green_tensor(grid, E, nu)
+    if kernel == "love":  # Love's uniform elements (frictionless half-space only: checked by the caller)
+        aliased = None if factor is None else partial(sliding_factor, material, velocity)
+        love = halfspace_love_multiplier(grid, E_star, factor=aliased)  # each alias at its own frequency
+        half = dataclasses.replace(half, normal=love if factor is None else real_where_self_conjugate(grid, love))
     nonzero = grid.wavenumber() > 0
     tensor, body, note = half, "half-space", "half-space"
     if layer is not None:
@@ -107,21 +133,65 @@ def body_model(grid: Grid, *, E: float, nu: float, layer: Layer | None, friction
             if zero > 0:  # keep its uniform compression: penetrations from the undeformed surface
                 tensor = dataclasses.replace(half, normal=half.normal.copy())
                 tensor.normal.flat[0] = zero
-    ratio = friction * np.abs(tensor.coupling[nonzero] / tensor.normal[nonzero]).max() if friction > 0 else 0.0
+    if E != material.E0 and tensor.normal.flat[0] > 0:
+        # an elastic shortcut at the glassy modulus: the uniform compression does not move, it is relaxed
+        tensor.normal.flat[0] *= E / material.E0
+    total = tensor.normal.astype(complex)
+    if friction > 0:
+        total += friction * tensor.coupling_multiplier(grid, direction)
+    if factor is not None and kernel != "love":
+        total *= factor
+        tensor = tensor.scaled(factor)
+    symmetric, skew = total.real, total.imag
+    if symmetric[nonzero].min() <= 0:
+        raise ValueError(
+            f"friction = {friction:g} with this material and sliding velocity: the symmetric part of the normal "
+            f"compliance is not positive (min {symmetric[nonzero].min():.3g}) at some wavevector, so contact "
+            "is not unique; lower the friction coefficient")
+    ratio = float(np.abs(skew[nonzero] / symmetric[nonzero]).max()) if (friction > 0 or factor is not None) else 0.0
     coupled = ratio > limit
-    transfer = None if tensor is half else tensor.normal
+    transfer = None if (tensor is half and factor is None) else symmetric
     coupling = None
     if coupled:
-        multiplier = tensor.coupling_multiplier(grid, direction)
-        note += f", Coulomb friction coupled (max |W|/K = {ratio:.3g})"
+        multiplier = 1j * skew
+        what = ", Coulomb friction coupled" if friction > 0 else ""
+        what += ", viscoelastic (loss part skew)" if factor is not None else ""
+        note += f"{what} (max |W|/K = {ratio:.3g})"
         if ratio > SHIFT_ABOVE:
-            # strong coupling: |W| joins the symmetric operator, W - |W| is what the outer loop iterates
-            transfer = tensor.normal + friction * np.abs(multiplier)
-            multiplier = multiplier - np.abs(multiplier)
+            # strong skew part: |W| joins the symmetric operator, W - |W| is what the outer loop iterates
+            transfer = symmetric + np.abs(skew)
+            multiplier = multiplier - np.abs(skew)
             note += ", |W| in the symmetric part"
-        coupling = Coupling(grid, periodic=True, friction=friction, transfer=multiplier)
+        coupling = Coupling(grid, periodic=True, friction=1.0, transfer=multiplier)
     elif friction > 0:
         note += ", friction uncoupled (coupling vanishes)"
-    compliance = Compliance(grid, E_star=E_star, kernel=kernel, periodic=True, transfer=transfer)
-    attrs.update(body=body, coupling="normal-tangential" if coupled else "none", model=note)
-    return BodyModel(compliance, coupling, tensor, attrs)
+    compliance = Compliance(grid, E_star=E_star, kernel="spectral" if transfer is not None else kernel,
+                            periodic=True, transfer=transfer)
+    attrs.update(body=body, coupling="normal-tangential" if (coupled and friction > 0) else "none",
+                 model=note + note_material)
+    return BodyModel(compliance, coupling, tensor, attrs, factor)
+
+
+def _material_factor(grid: Grid, material, velocity, limit: float, attrs: dict):
+    """``(factor, E, note)``: the viscoelastic factor of the multipliers (None where the scene is elastic
+    to ``limit``: :func:`contactlib.kernels.viscoelastic.modulus_deviation`), the modulus the elastic
+    kernels are built with, and what the model note adds. Records the choice in ``attrs``."""
+    if isinstance(material, Elastic):
+        return None, float(material.E), ""
+    attrs.update(E0=material.E0, E_inf=material.E_inf)
+    moving = velocity is not None and any(float(v) != 0 for v in velocity)
+    if not moving:
+        attrs["material_model"] = "elastic, relaxed modulus E0 (no sliding: the material is relaxed)"
+        return None, material.E0, ", viscoelastic body at rest: relaxed (E0)"
+    relaxed = modulus_deviation(grid, material, velocity, material.E0)
+    if relaxed <= limit:
+        attrs["material_model"] = (f"elastic, relaxed modulus E0: |E*(q.V) - E0| <= {relaxed:.1e} E0 on the grid, "
+                                   f"<= {REDUCTION_FRACTION} tol")
+        return None, material.E0, ", viscoelastic body modelled elastic (E0: slow sliding)"
+    glassy = modulus_deviation(grid, material, velocity, material.E_inf)
+    if glassy <= limit:
+        attrs["material_model"] = (f"elastic, glassy modulus E_inf: |E*(q.V) - E_inf| <= {glassy:.1e} E_inf on the "
+                                   f"grid, <= {REDUCTION_FRACTION} tol")
+        return None, material.E_inf, ", viscoelastic body modelled elastic (E_inf: fast sliding)"
+    attrs["material_model"] = "viscoelastic steady sliding (complex modulus at q.V)"
+    return steady_sliding_factor(grid, material, velocity), material.E0, ", viscoelastic steady sliding"

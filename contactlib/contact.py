@@ -1,4 +1,4 @@
-"""Public entry point for frictionless normal contact: :func:`solve`."""
+"""Public entry point for normal contact, elastic or viscoelastic, at rest or sliding: :func:`solve`."""
 
 from __future__ import annotations
 
@@ -14,7 +14,8 @@ from .analysis.friction import interlocking_friction
 from ._version import __version__
 from .grid import Grid
 from .labels import attrs_for
-from .materials import contact_modulus
+from .analysis.viscoelastic import traction_power
+from .materials import Elastic, Viscoelastic, contact_modulus, material_of
 from .bodies import BodyModel, Layer, body_model
 from .operators import KERNELS
 from .solvers import ContactState, solve_active_set, solve_coupled, solve_periodic_displacement, solve_polonsky_keer
@@ -115,8 +116,8 @@ def _check_loads(mean_pressure, penetration) -> None:
 def solve(
     heights,
     *,
-    E: float,
-    nu: float,
+    E: float | None = None,
+    nu: float | None = None,
     mean_pressure: float | None = None,
     penetration: float | None = None,
     periodic: bool | None = None,
@@ -131,10 +132,13 @@ def solve(
     target_error: float | None = None,
     layer: Layer | None = None,
     friction: float = 0.0,
-    sliding_direction: float = 0.0,
+    sliding_direction: float | None = None,
+    material: Elastic | Viscoelastic | None = None,
+    sliding_velocity=None,
     adhesion=None,
 ) -> xr.Dataset:
-    """Normal contact of a rigid rough surface on an elastic half-space or layer, with Coulomb friction.
+    """Normal contact of a rigid rough surface on an elastic or viscoelastic half-space or layer, with
+    Coulomb friction and steady sliding.
 
     Parameters
     ----------
@@ -142,7 +146,17 @@ def solve(
         Rigid surface heights [length], 1D (plane strain, per unit width) or 2D. Higher points
         touch first. A DataArray's coordinates give the physical size; an ndarray needs ``length``.
     E, nu : float
-        Young's modulus [pressure] and Poisson ratio of the body, ``E > 0``, ``-1 < nu <= 0.5``.
+        Young's modulus [pressure] and Poisson ratio of the body, ``E > 0``, ``-1 < nu <= 0.5``: the
+        shorthand for ``material=contactlib.Elastic(E, nu)``.
+    material : contactlib.Elastic or contactlib.Viscoelastic, optional
+        The body's material (give it or ``E, nu``). A viscoelastic body at rest is relaxed (``E0``).
+    sliding_velocity : float or sequence of float, optional
+        Steady sliding: the velocity ``(Vx, Vy)`` (1D: ``Vx``) of the rigid surface relative to the body
+        [length/time]. A viscoelastic body then responds with its complex modulus at ``q . V`` at each
+        wavevector (:mod:`contactlib.kernels.viscoelastic`; periodic only), and the result adds
+        ``dissipated_power`` and the interlocking friction. Where the complex modulus is within
+        ``0.1 tol`` of ``E0`` (or ``E_inf``) over the grid, the elastic problem with that modulus is
+        solved (``attrs['material_model']``). It sets the sliding direction.
     mean_pressure : float
         Load control: mean pressure over the window [pressure] (1D: line load per unit width over
         the window length). Non-periodic: total load divided by the window area.
@@ -190,13 +204,15 @@ def solve(
         ``mu_c p`` along ``sliding_direction``. Through the normal-tangential terms of the Green's
         tensor it moves the surface normally (material coupling, ``nu < 0.5``; geometric, a finite
         layer), which makes the pressure asymmetric (:mod:`contactlib.solvers.coupled`).
-    sliding_direction : float
+    sliding_direction : float, optional
         Direction [rad, in the x-y plane] in which the rigid surface moves relative to the body;
-        a profile slides along ``+x`` (give 0, or pi to slide along ``-x``).
+        a profile slides along ``+x`` (give 0, or pi to slide along ``-x``). Default: the direction
+        of ``sliding_velocity``, else 0; a direction that contradicts the velocity is refused.
     adhesion : contactlib.Adhesion, optional
         An adhesive interface (:mod:`contactlib.adhesion`): a cohesive law inside the contact solve, or
         ``"jkr"``, the energy balance (a profile symmetric about its highest point, or a surface of
-        revolution). Frictionless;
+        revolution). Frictionless and at rest (``friction`` and a nonzero ``sliding_velocity`` are
+        refused; a viscoelastic body at rest is its relaxed elastic body);
         ``mean_pressure`` (the applied traction, adhesive part included) and ``penetration`` may then be
         negative. Adds ``adhesive_pressure`` (the tensile part of ``pressure``) and ``interaction_area``;
         ``contact_area`` is the repulsive (closed) area (:mod:`contactlib.adhesive_contact`).
@@ -208,7 +224,8 @@ def solve(
         ``mean_pressure``, ``penetration``, ``iterations``, ``residual``; with friction, also the
         tangential traction and (periodic) the tangential displacement fields, and
         ``friction_coefficient_interlocking`` (``mu_a``, :func:`interlocking_friction`) and
-        ``friction_coefficient`` (``mu_c + mu_a``). ``attrs['model']`` says which model ran
+        ``friction_coefficient`` (``mu_c + mu_a``); sliding (``sliding_velocity``), also those two and
+        ``dissipated_power`` (:func:`contactlib.analysis.traction_power`). ``attrs['model']`` says which model ran
         (:mod:`contactlib.bodies`: the half-space where a layer is within tolerance of it, no
         coupling where it vanishes); ``attrs['full_contact']`` is 1, with a message, when the
         contact is complete (the load no longer changes the area).
@@ -222,10 +239,11 @@ def solve(
     True
     """
     periodic = periodic_of(heights, periodic)
-    setup = _setup(heights, E=E, nu=nu, mean_pressure=mean_pressure, penetration=penetration, periodic=periodic,
-                   tol=tol, max_iter=max_iter, kernel=kernel, method=method, length=length,
-                   initial_pressure=initial_pressure, target_error=target_error, layer=layer, friction=friction,
-                   sliding_direction=sliding_direction, adhesion=adhesion)
+    setup = _setup(heights, material=material_of(material, E, nu), mean_pressure=mean_pressure,
+                   penetration=penetration, periodic=periodic, tol=tol, max_iter=max_iter, kernel=kernel,
+                   method=method, length=length, initial_pressure=initial_pressure, target_error=target_error,
+                   layer=layer, friction=friction, sliding_direction=sliding_direction,
+                   sliding_velocity=sliding_velocity, adhesion=adhesion)
     start = time.perf_counter()
     state = setup.run()
     wall = time.perf_counter() - start
@@ -280,10 +298,10 @@ def solve_tolerances(
     for t in tols:
         _check_tolerance(t, "tols")
     periodic = periodic_of(heights, periodic)
-    setup = _setup(heights, E=E, nu=nu, mean_pressure=mean_pressure, penetration=penetration, periodic=periodic,
-                   tol=min(tols), max_iter=max_iter, kernel=kernel, method="cg", length=length,
-                   initial_pressure=initial_pressure, target_error=None, layer=None, friction=0.0,
-                   sliding_direction=0.0)
+    setup = _setup(heights, material=material_of(None, E, nu), mean_pressure=mean_pressure,
+                   penetration=penetration, periodic=periodic, tol=min(tols), max_iter=max_iter, kernel=kernel,
+                   method="cg", length=length, initial_pressure=initial_pressure, target_error=None, layer=None,
+                   friction=0.0, sliding_direction=None, sliding_velocity=None)
     pending = sorted(set(tols), reverse=True)
     found: dict[float, tuple[ContactState, float]] = {}
     paused = 0.0
@@ -368,7 +386,7 @@ class _Setup:
             ds.attrs["tol"] = tol
         if state.outer_iterations:
             ds["outer_iterations"] = ((), state.outer_iterations, attrs_for("outer_iterations"))
-        if ds.attrs["friction"] > 0:
+        if ds.attrs["friction"] > 0 or "sliding_velocity" in ds.attrs:
             self._label_friction(ds, state, length_unit, pressure_unit)
         if np.all(state.pressure > 0):
             ds.attrs["full_contact"] = 1
@@ -389,10 +407,10 @@ class _Setup:
         axes = ("x", "y")[: self.grid.dim]
         components = (np.cos(direction), np.sin(direction))[: self.grid.dim]
         tractions = [mu * c * state.pressure for c in components]
-        for axis, traction in zip(axes, tractions):
+        for axis, traction in zip(axes, tractions if mu > 0 else ()):
             name = f"tangential_traction_{axis}"
             ds[name] = (self.dims, traction, attrs_for(name, length=length_unit, pressure=pressure_unit))
-        if self.body.tensor is not None:
+        if self.body.tensor is not None and mu > 0:
             spectra = self.body.tensor.tangential_displacement(self.grid, fft.rfftn(state.pressure),
                                                                [fft.rfftn(t) for t in tractions])
             for axis, spectrum in zip(axes, spectra):
@@ -403,6 +421,12 @@ class _Setup:
                                      periodic=self.operator.periodic)
         ds["friction_coefficient_interlocking"] = ((), mu_a, attrs_for("friction_coefficient_interlocking"))
         ds["friction_coefficient"] = ((), mu + mu_a, attrs_for("friction_coefficient"))
+        if "sliding_velocity" in ds.attrs:  # elastic models dissipate nothing: their tensor is real
+            velocity = ds.attrs["sliding_velocity"]
+            power = 0.0 if self.body.factor is None else traction_power(
+                self.grid, state.pressure, self.body.tensor, velocity, friction=mu, direction=direction)
+            ds["dissipated_power"] = ((), power, attrs_for("dissipated_power", length=length_unit,
+                                                               pressure=pressure_unit))
 
     def check(self, state: ContactState, ds: xr.Dataset) -> None:
         """Refuse a footprint cut by the window edge; raise :class:`ConvergenceError` if unconverged."""
@@ -425,6 +449,7 @@ class _Setup:
 
 def _check_friction(layer, friction, sliding_direction, nu, method, kernel, periodic) -> None:
     """The scene's body and interface: refused with the parameter named, before anything is built."""
+    sliding_direction = 0.0 if sliding_direction is None else sliding_direction
     if layer is not None:
         if not isinstance(layer, Layer):
             raise ValueError(f"layer must be a contactlib.Layer or None, got {layer!r}")
@@ -446,10 +471,40 @@ def _check_friction(layer, friction, sliding_direction, nu, method, kernel, peri
                          "or friction")
 
 
-def _setup(heights, *, E, nu, mean_pressure, penetration, periodic, tol, max_iter, kernel, method, length,
-           initial_pressure, target_error, layer, friction, sliding_direction, adhesion=None) -> _Setup:
+def _check_velocity(sliding_velocity, sliding_direction, dim, material, method, periodic):
+    """``(velocity, direction)``: the validated velocity (a tuple per axis, or None) and the sliding
+    direction it sets; contradictions and unsupported scenes refused with the parameter named."""
+    if sliding_velocity is None:
+        return None, 0.0 if sliding_direction is None else sliding_direction
+    velocity = np.atleast_1d(np.asarray(sliding_velocity, dtype=float))
+    if velocity.shape != (dim,):
+        raise ValueError(f"sliding_velocity must have {dim} component(s) (one per axis of the heights), "
+                         f"got {sliding_velocity!r}")
+    if not np.all(np.isfinite(velocity)):
+        raise ValueError(f"sliding_velocity must be finite, got {sliding_velocity!r}")
+    speed = float(np.hypot(*velocity)) if dim == 2 else abs(float(velocity[0]))
+    direction = float(np.arctan2(velocity[-1], velocity[0])) if dim == 2 else (0.0 if velocity[0] >= 0 else np.pi)
+    if speed == 0:
+        direction = 0.0 if sliding_direction is None else sliding_direction
+    elif sliding_direction is not None and not np.isclose(np.cos(sliding_direction - direction), 1.0, atol=1e-12):
+        raise ValueError(f"sliding_direction {sliding_direction!r} contradicts sliding_velocity {sliding_velocity!r} "
+                         f"(direction {direction:.6g} rad): give one of them")
+    if isinstance(material, Viscoelastic) and speed > 0:
+        if method == "active-set":
+            raise ValueError("method='active-set' solves symmetric (elastic) problems only; a viscoelastic body in "
+                             "steady sliding needs method='cg'")
+        if not periodic:
+            raise ValueError("sliding_velocity: steady viscoelastic sliding is modelled on a periodic window "
+                             "(periodic=True); enlarge the window around an isolated indenter")
+    return tuple(float(v) for v in velocity), direction
+
+
+def _setup(heights, *, material, mean_pressure, penetration, periodic, tol, max_iter, kernel, method, length,
+           initial_pressure, target_error, layer, friction, sliding_direction, sliding_velocity,
+           adhesion=None) -> _Setup:
     """Validate every argument of :func:`solve` and build the body's operators."""
     values, grid, dims, coords = grid_of(heights, length)
+    E, nu = material.E0, material.nu
     E_star = contact_modulus(E, nu)
     if adhesion is None:
         _check_loads(mean_pressure, penetration)
@@ -471,13 +526,18 @@ def _setup(heights, *, E, nu, mean_pressure, penetration, periodic, tol, max_ite
     if method not in METHODS:
         raise ValueError(f"method must be one of {METHODS}, got {method!r}")
     _check_friction(layer, friction, sliding_direction, nu, method, kernel, periodic)
+    velocity, sliding_direction = _check_velocity(sliding_velocity, sliding_direction, grid.dim, material, method,
+                                                  periodic)
+    if adhesion is not None and velocity is not None and any(v != 0 for v in velocity):
+        raise ValueError(f"sliding_velocity: adhesion is modelled at rest (a steady sliding adhesive contact is not "
+                         f"supported), got sliding_velocity={sliding_velocity!r} with adhesion")
     warm = None
     if method == "cg" and initial_pressure is not None:
         warm = np.asarray(initial_pressure, dtype=float)
         if warm.shape != values.shape:
             raise ValueError(f"initial_pressure has shape {warm.shape}, heights {values.shape}")
-    body = body_model(grid, E=float(E), nu=float(nu), layer=layer, friction=float(friction),
-                      direction=float(sliding_direction), tol=tol, kernel=kernel, periodic=periodic)
+    body = body_model(grid, material=material, layer=layer, friction=float(friction),
+                      direction=float(sliding_direction), tol=tol, kernel=kernel, periodic=periodic, velocity=velocity)
     if not body.compliance.definite and penetration is not None and penetration >= values.max() - values.mean():
         raise ValueError(
             f"penetration {penetration!r} reaches full contact (max - mean height = "
@@ -487,6 +547,10 @@ def _setup(heights, *, E, nu, mean_pressure, penetration, periodic, tol, max_ite
     attrs = {"kernel": kernel, "periodic": int(periodic), "tol": tol, "max_iter": int(max_iter), "E": float(E),
              "nu": float(nu), "E_star": E_star,
              "load_control": "mean_pressure" if mean_pressure is not None else "penetration", **body.attrs}
+    if isinstance(material, Viscoelastic):
+        attrs["prony"] = [v for branch in material.prony for v in branch]  # E_1, tau_1, E_2, tau_2, ...
+    if velocity is not None:
+        attrs["sliding_velocity"] = list(velocity)
     if target_error is not None:
         attrs["target_error"] = float(target_error)
     solver_args = {"mean_pressure": mean_pressure, "penetration": penetration, "tol": tol,

@@ -25,6 +25,8 @@ VARIABLES: dict[str, dict[str, str]] = {
     "friction_coefficient_interlocking": {"units": "1",
                                           "long_name": "interlocking friction coefficient mu_a (pressure asymmetry)"},
     "friction_coefficient": {"units": "1", "long_name": "total friction coefficient mu_c + mu_a"},
+    "dissipated_power": {"units": "{pressure} {length} s-1",
+                         "long_name": "power dissipated in the body per unit area (steady sliding)"},
     "residual": {"units": "1", "long_name": "scale-free contact residual"},
     "adhesive_pressure": {"units": "{pressure}", "long_name": "tensile (adhesive) part of the normal traction"},
     "interaction_area": {"units": "1",
@@ -44,6 +46,17 @@ VARIABLES: dict[str, dict[str, str]] = {
     "wavenumber": {"units": "rad {length}-1", "long_name": "wavenumber |q|"},
     "psd": {"units": "{length}4", "long_name": "radially averaged power spectral density"},
     "psd_1d": {"units": "{length}3", "long_name": "power spectral density of a profile"},
+    "asperity": {"units": "1", "long_name": "asperity index"},
+    "center_x": {"units": "{length}", "long_name": "asperity summit position along x"},
+    "center_y": {"units": "{length}", "long_name": "asperity summit position along y"},
+    "radius": {"units": "{length}", "long_name": "asperity sphere radius"},
+    "summit_height": {"units": "{length}", "long_name": "asperity summit height above the base"},
+    "force": {"units": "{pressure} {length}2", "long_name": "normal contact force on the asperity"},
+    "macro_force": {"units": "{pressure} {length}2",
+                    "long_name": "normal contact force on the asperity from the macro step (Hertz + point-load interaction)"},
+    "contact_radius": {"units": "{length}", "long_name": "contact radius of the asperity (area-equivalent)"},
+    "local_penetration": {"units": "{length}",
+                          "long_name": "local penetration of the asperity from the macro step (negative: separated)"},
 }
 
 

@@ -33,9 +33,11 @@ def test_energy_method_matches_johnson_and_westergaard():
     from contactlib.contact import _setup
 
     h = contactlib.surfaces.wavy(2048, amplitude=AMPLITUDE)
-    setup = _setup(h, E=1.0, nu=0.0, mean_pressure=None, penetration=0.0, periodic=True, tol=None, max_iter=10,
-                   kernel="spectral", method="cg", length=None, initial_pressure=None, target_error=None, layer=None,
-                   friction=0.0, sliding_direction=0.0, adhesion=Adhesion(work=WORK, model="jkr"))
+    setup = _setup(h, material=contactlib.Elastic(1.0, 0.0), mean_pressure=None, penetration=0.0, periodic=True,
+                   tol=None, max_iter=10, kernel="spectral", method="cg", length=None, initial_pressure=None,
+                   target_error=None, layer=None,
+                   friction=0.0, sliding_direction=None, sliding_velocity=None,
+                   adhesion=Adhesion(work=WORK, model="jkr"))
     fam = family(setup)
     m = np.arange(fam.a.size - 1)
     a = (m + 1) * fam.spacing  # G between domains m and m + 1 acts at this half-width
@@ -77,9 +79,10 @@ def test_jkr_sphere_energy_method():
 
     R, w = 1.0, 2.83e-4  # a_c = 0.1 = 26 elements
     h = contactlib.surfaces.paraboloid(128, length=0.5, radius=R)
-    setup = _setup(h, E=1.0, nu=0.0, mean_pressure=None, penetration=0.0, periodic=False, tol=None, max_iter=10,
-                   kernel="spectral", method="cg", length=None, initial_pressure=None, target_error=None, layer=None,
-                   friction=0.0, sliding_direction=0.0, adhesion=Adhesion(work=w, model="jkr"))
+    setup = _setup(h, material=contactlib.Elastic(1.0, 0.0), mean_pressure=None, penetration=0.0, periodic=False,
+                   tol=None, max_iter=10, kernel="spectral", method="cg", length=None, initial_pressure=None,
+                   target_error=None, layer=None, friction=0.0, sliding_direction=None, sliding_velocity=None,
+                   adhesion=Adhesion(work=w, model="jkr"))
     fam = family(setup, max_radius=0.14)
     area, d, mean = fam.equilibrium_curve(w)
     load = mean * 0.5 * 0.5
@@ -239,6 +242,24 @@ def test_bad_scene_named():
     with pytest.raises(ValueError, match="penetrations"):
         contactlib.adhesion_curve(h, E=1.0, nu=0.0, adhesion=Adhesion(work=1e-4, model="jkr"), penetrations=[0.1, 0.0])
     assert isinstance(Adhesion(work=1.0, model="jkr"), Adhesion)  # range optional for jkr
+
+
+def test_adhesion_with_materials_and_sliding():
+    """A viscoelastic body at rest is its relaxed elastic body (same answer as ``E=E0``); steady
+    sliding with adhesion is refused, naming ``sliding_velocity``."""
+    h = contactlib.surfaces.wavy(256, amplitude=AMPLITUDE)
+    law = Adhesion(work=WORK, model="jkr")
+    material = contactlib.Viscoelastic.standard_linear_solid(E0=1.0, E_inf=10.0, tau=1.0, nu=0.0)
+    relaxed = contactlib.solve(h, material=material, penetration=0.3 * AMPLITUDE, adhesion=law)
+    elastic = contactlib.solve(h, E=1.0, nu=0.0, penetration=0.3 * AMPLITUDE, adhesion=law)
+    assert float(relaxed.mean_pressure) == pytest.approx(float(elastic.mean_pressure), rel=1e-12)
+    curve = contactlib.adhesion_curve(h, material=contactlib.Elastic(1.0, 0.0), adhesion=law,
+                                      penetrations=[0.0, 0.3 * AMPLITUDE])
+    assert float(curve.mean_pressure[1]) == pytest.approx(float(elastic.mean_pressure), rel=1e-9)
+    with pytest.raises(ValueError, match="sliding_velocity"):
+        contactlib.solve(h, material=material, penetration=0.3 * AMPLITUDE, sliding_velocity=1.0, adhesion=law)
+    with pytest.raises(ValueError, match="sliding_velocity"):
+        contactlib.solve(h, E=1.0, nu=0.0, penetration=0.3 * AMPLITUDE, sliding_velocity=1.0, adhesion=law)
 
 
 def test_nonconvergence_is_reported():

@@ -109,10 +109,28 @@ def test_tiny_end_to_end_run_and_report(workdir):
         assert dict(ds.sizes) == {"nu": 2, "scaled_pressure": 2, "seed": 1} and (ds.status == 0).all()
         assert ds.nu.attrs["long_name"] == "Poisson ratio of the layer" and "nu" not in ds.attrs
         assert (ds.interlocking_ratio.sel(nu=0.5) > 0).all()  # geometric coupling alone resists sliding
+    with xr.open_dataset(results / "fig6b_viscoelastic_layer.nc") as ds:
+        assert (ds.status == 0).all() and ds.zeta.attrs["long_name"] == "dimensionless sliding speed V tau q0"
+        mu = ds.interlocking_over_slope.sel(seed=0)
+        assert float(mu.sel(friction=0.8, zeta=1000.0)) > 10 * abs(float(mu.sel(friction=0.0, zeta=1000.0)))
+        assert float(mu.sel(friction=0.0, zeta=1e-2)) > 5 * float(mu.sel(friction=0.0, zeta=1000.0))
+    with xr.open_dataset(results / "friction_speed.nc") as ds:
+        assert (ds.status == 0).all() and (ds.viscoelastic_model.sel(zeta=0.1) == 1).all()
+        area = ds.contact_area.isel(seed=0, glassy_ratio=0)
+        assert float(area.sel(zeta=1e-3)) > float(area.sel(zeta=1000.0))  # relaxed to glassy
+    with xr.open_dataset(results / "fig2_viscoelastic_map.nc") as ds:
+        assert ds.pressure.dims == ("seed", "x", "y") and ds.pressure.attrs["units"] == "Pa"
+        assert float(ds.contact_area.isel(seed=0)) < float(ds.contact_area_at_rest.isel(seed=0))
+    with xr.open_dataset(results / "two_scale.nc") as ds:
+        assert dict(ds.sizes) == {"count": 2, "coverage": 1, "seed": 1} and (ds.status == 0).all()
+        for name in list(ds.data_vars) + list(ds.coords):
+            assert ds[name].attrs.get("units") and ds[name].attrs.get("long_name"), name
+        assert float(ds.two_scale_asperity_force_error.max()) < 1e-2 and (ds.macro_time > 0).all()
     table = (results / "speed_vs_error_table.md").read_text()
     assert "| 1.00% | wavy_2d |" in table and "Convergence orders" in table
     for study in ("validation", "area_load", "anisotropy", "speed_vs_error", "fig5_friction_area",
-                  "fig6a_interlocking"):
+                  "fig6a_interlocking", "fig2_viscoelastic_map", "fig3_anisotropy_polar", "fig6b_viscoelastic_layer",
+                  "friction_speed", "two_scale"):
         assert (results / "figures" / f"{study}.png").stat().st_size > 10_000
     assert not list(results.glob(".*.tmp"))
     report = snakemake(workdir, "--configfile", "tiny.yaml", "--report", "results/report.html", timeout=300)

@@ -10,7 +10,7 @@ from __future__ import annotations
 import numpy as np
 import xarray as xr
 
-from .statistics import _values_and_grid
+from .statistics import _half_spectrum_weights, _values_and_grid
 
 
 def anisotropy_tensor(field, zeta1: float, zeta2: float, *, length=None, n_theta: int = 181) -> xr.Dataset:
@@ -36,11 +36,7 @@ def anisotropy_tensor(field, zeta1: float, zeta2: float, *, length=None, n_theta
     q = np.hypot(qx, qy)
     band = (q > zeta1 * q0) & (q < zeta2 * q0)
     power = np.abs(np.fft.rfftn(values)) ** 2 * band
-    weight = np.full(power.shape, 2.0)
-    weight[:, 0] = 1.0
-    if grid.shape[1] % 2 == 0:
-        weight[:, -1] = 1.0
-    power *= weight / grid.size**2
+    power *= _half_spectrum_weights(grid) / grid.size**2
     qx_b = np.broadcast_to(qx, q.shape)
     qy_b = np.broadcast_to(qy, q.shape)
     m = np.array([[np.sum(power * qx_b * qx_b), np.sum(power * qx_b * qy_b)],

@@ -26,6 +26,16 @@ def _values_and_grid(field, length=None) -> tuple[np.ndarray, Grid]:
     return values, Grid(values.shape, lengths)
 
 
+def _half_spectrum_weights(grid: Grid) -> np.ndarray:
+    """Weights of an rfft half-spectrum in a sum over the full spectrum (2, but 1 for the columns
+    without a mirror image)."""
+    weight = np.full(grid.spectral_shape(), 2.0)
+    weight[..., 0] = 1.0
+    if grid.shape[-1] % 2 == 0:
+        weight[..., -1] = 1.0
+    return weight
+
+
 def rms_height(field) -> float:
     """Root mean square of the field about its mean [field units]."""
     values = np.asarray(field, dtype=float)

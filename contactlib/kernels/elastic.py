@@ -37,7 +37,8 @@ def _sinc(z: np.ndarray) -> np.ndarray:
     return np.sinc(z / np.pi)
 
 
-def halfspace_love_multiplier(grid: Grid, E_star: float, *, images: int | None = None) -> np.ndarray:
+def halfspace_love_multiplier(grid: Grid, E_star: float, *, images: int | None = None,
+                              factor=None) -> np.ndarray:
     """Periodic Love kernel: uniform pressure on each element, displacement at element centres.
 
     Sampling the continuous response of piecewise-constant pressure aliases every wavevector
@@ -46,12 +47,16 @@ def halfspace_love_multiplier(grid: Grid, E_star: float, *, images: int | None =
     ``prod_i sinc(q_i dx_i / 2)``. This is the Fourier form of the image sum of seed 2 eqs. (7)-(8)
     (``l_ij - l_m``: the mean is the ``k = 0`` term, zero here). Pairs ``+m, -m`` alternate in
     sign, so truncating at ``|m_i| <= images`` converges fast.
+
+    ``factor(*q)``, optional: a complex factor of the continuous kernel at each aliased wavevector
+    ``k + m K`` (a viscoelastic body in steady sliding: each alias oscillates at its own frequency);
+    the result is then complex.
     """
     q = grid.wavevectors()
     d = grid.spacing
     M = images if images is not None else (LOVE_IMAGES_2D if grid.dim == 2 else LOVE_IMAGES_1D)
     orders = np.arange(-M, M + 1)
-    out = np.zeros(grid.spectral_shape())
+    out = np.zeros(grid.spectral_shape(), dtype=float if factor is None else complex)
     if grid.dim == 1:
         K = 2 * np.pi / d[0]
         for m in orders:
@@ -59,7 +64,7 @@ def halfspace_love_multiplier(grid: Grid, E_star: float, *, images: int | None =
             absq = np.abs(qm)
             with np.errstate(divide="ignore", invalid="ignore"):
                 term = np.where(absq > 0, 2.0 / (E_star * absq) * _sinc(qm * d[0] / 2), 0.0)
-            out += term
+            out += term if factor is None else term * factor(qm)
         out[0] = 0.0  # zero-mean displacement (the image terms vanish there up to rounding)
         return out
     Kx, Ky = 2 * np.pi / d[0], 2 * np.pi / d[1]
@@ -70,7 +75,8 @@ def halfspace_love_multiplier(grid: Grid, E_star: float, *, images: int | None =
             qy = q[1] + my * Ky
             absq = np.sqrt(qx**2 + qy**2)
             with np.errstate(divide="ignore", invalid="ignore"):
-                out += np.where(absq > 0, sx * _sinc(qy * d[1] / 2) * 2.0 / (E_star * absq), 0.0)
+                term = np.where(absq > 0, sx * _sinc(qy * d[1] / 2) * 2.0 / (E_star * absq), 0.0)
+            out += term if factor is None else term * factor(qx, qy)
     out[0, 0] = 0.0
     return out
 

@@ -40,6 +40,12 @@ class SurfaceGreenTensor:
     inplane: np.ndarray
     antiplane: np.ndarray
 
+    def scaled(self, factor: np.ndarray) -> SurfaceGreenTensor:
+        """Every entry times ``factor`` (the viscoelastic body's :func:`.viscoelastic.steady_sliding_factor`:
+        the same material compliance multiplies all of them at a constant Poisson ratio)."""
+        return SurfaceGreenTensor(self.normal * factor, self.coupling * factor, self.inplane * factor,
+                                  self.antiplane * factor)
+
     def coupling_multiplier(self, grid: Grid, direction: float) -> np.ndarray:
         """``-i c (q . s)/|q|``: the normal displacement per unit tangential traction along
         ``s = (cos direction, sin direction)`` (1D: along ``+x``) [length/pressure], complex."""

@@ -9,7 +9,7 @@ stable. Load control wraps it in a bracketed root search on the penetration.
 from __future__ import annotations
 
 import numpy as np
-from scipy.linalg import solve_triangular
+from scipy.linalg import lu_factor, lu_solve, solve_triangular
 from scipy.optimize import brentq
 
 from .state import ContactState, contact_residual, height_scale
@@ -43,7 +43,11 @@ def _solve_fixed_penetration(operator, hp, penetration, scale, max_sets):
         A = operator.matrix(active)
         x0 = p[active]
         p[:] = 0.0
-        p[active] = _gauss_seidel(A, flat_hp[active] + penetration, x0)
+        if np.array_equal(A, A.T):
+            p[active] = _gauss_seidel(A, flat_hp[active] + penetration, x0)
+        else:  # a sliding viscoelastic body: Gauss-Seidel needs symmetry, LU does not
+            p[active] = lu_solve(lu_factor(A, check_finite=False), flat_hp[active] + penetration,
+                                 check_finite=False)
         gap = (operator(p.reshape(hp.shape)) - hp - penetration).ravel()
         keep = active[p[active] > 0]
         outside = np.ones(hp.size, dtype=bool)
@@ -69,7 +73,9 @@ def solve_active_set(
     tol: float = 1e-8,
     max_iter: int = 200,
 ) -> ContactState:
-    """Active-set + Gauss-Seidel solve (``operator`` is a :class:`~contactlib.operators.Compliance`).
+    """Active-set + Gauss-Seidel solve (``operator`` is a :class:`~contactlib.operators.Compliance`, or any
+    object with ``periodic``, ``matrix(indices)`` and ``__call__(pressure)``; a non-symmetric matrix is
+    solved by LU instead of Gauss-Seidel).
 
     ``max_iter`` bounds the number of contact-set updates per penetration. Grids above
     ``MAX_POINTS`` elements are refused: the method builds dense matrices.

@@ -87,6 +87,53 @@ class EnergyFamily:
         out[ok] = (-B[ok] - root[ok]) / (2 * A[ok])
         return out
 
+    def growth_threshold(self, work: float) -> np.ndarray:
+        """For each ``m < M``, the approach above which domain ``m`` grows into ``m + 1`` (below it, ``m + 1``
+        shrinks into ``m``): the tensile-edge root of ``G = w`` (:meth:`equilibrium_penetration`), or, where
+        ``G > w`` at every approach, the approach of the traction-free edge (``G`` least).
+
+        Comparing free energies alone is not enough: above the compressive root ``G`` exceeds ``w`` again,
+        so ``F`` falls toward smaller domains, which interpenetrate outside (a large approach step from a
+        small domain, or a stiff thin layer, would descend into them). The edge moves out wherever it is
+        not tensile enough to hold, whatever ``F`` says there.
+        """
+        d = self.equilibrium_penetration(work)
+        da, db = np.diff(self.a), np.diff(self.b)
+        vertex = np.where(da > 0, db / np.where(da > 0, da, 1.0), np.nan)
+        return np.where(np.isfinite(d), d, vertex)
+
+    def descend(self, m: int, penetration: float, work: float) -> int:
+        """The domain reached from domain ``m`` (``-1``: open) at approach ``penetration``, moving its edge
+        one element at a time by :meth:`growth_threshold`; the open state and domain 0 by their free
+        energies (without a range nothing pulls open surfaces together: open stays open at ``d < 0``)."""
+        d = float(penetration)
+        if m < 0:
+            if d < 0:
+                return -1
+            m = 0
+        t = self.growth_threshold(work)
+        last = self.a.size - 1
+        while m < last and not (d <= t[m]):  # NaN threshold (A <= 0, never here): grow
+            m += 1
+        while m > 0 and d < t[m - 1]:
+            m -= 1
+        if m == 0 and d < 0 and float(self.free_energy(d, work)[0]) > 0.0:
+            return -1
+        return m
+
+    def stable_domains(self, penetration: float, work: float) -> np.ndarray:
+        """The domains (``-1``: open) that :meth:`descend` does not leave at ``penetration``."""
+        d = float(penetration)
+        t = self.growth_threshold(work)
+        m = np.arange(self.a.size)
+        lower = np.concatenate([[-np.inf], t])  # shrink below
+        upper = np.concatenate([t, [np.inf]])  # grow above
+        stable = (d >= lower) & (d <= upper)
+        if d < 0:
+            stable[0] &= float(self.free_energy(d, work)[0]) <= 0.0
+            return np.concatenate([[-1], m[stable]])
+        return m[stable]
+
     def equilibrium_curve(self, work: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """The equilibrium states between domains ``m`` and ``m + 1``: closed area (their mean), approach
         (:meth:`equilibrium_penetration`) and mean traction over the window (the mean of the two domains'

@@ -40,10 +40,12 @@ from .fig6a_interlocking import interlocking_point
 from .measured_area_load import measured_area_load_point
 from .speed_vs_error import (REFERENCE_FLOOR, REFERENCE_MAX_ITER, SCENES, rough_master, rough_reference,
                              speed_error_point, speed_error_shapes)
+from .two_scale import two_scale_point
 from .validation import validation_point
 
 STUDY_MODULES = ("validation", "area_load", "anisotropy", "speed_vs_error", "fig5_friction_area",
-                 "fig6a_interlocking", "measured_area_load", "fig4_adhesive_layers")
+                 "fig6a_interlocking", "measured_area_load", "fig2_viscoelastic_map", "fig3_anisotropy_polar",
+                 "fig6b_viscoelastic_layer", "friction_speed", "two_scale", "fig4_adhesive_layers")
 """The study modules of this package, in registry order; each module's name is its study's name."""
 
 
@@ -67,7 +69,7 @@ STUDIES, STUDY_VARIABLES = _registry(STUDY_MODULES)
 
 __all__ = ["STUDIES", "STUDY_VARIABLES", "STUDY_MODULES", "add_error_estimate", "study_surfaces", "rough_surface",
            "validation_point", "area_load_point", "anisotropy_point", "speed_error_point", "speed_error_shapes",
-           "friction_area_point", "interlocking_point", "measured_area_load_point",
+           "friction_area_point", "interlocking_point", "measured_area_load_point", "two_scale_point",
            "rough_master", "rough_reference", "SCENES", "REFERENCE_FLOOR", "REFERENCE_MAX_ITER", "PERSSON_KAPPA",
            "PUBLISHED_KAPPA_RANGE"]
 

@@ -6,7 +6,7 @@ from __future__ import annotations
 from .. import analysis
 from ..contact import solve
 from ..materials import contact_modulus
-from ._common import rough_surface
+from ._common import anisotropy_summary, rough_surface
 
 VARIABLES: dict[str, dict[str, str]] = {
     "anisotropy": {"units": "1", "long_name": "target anisotropy ratio gamma of the surface"},
@@ -39,10 +39,7 @@ def anisotropy_point(*, anisotropy: float, seed: int, n: int, hurst: float, angl
     result = {"contact_area": float(out.contact_area), "mean_pressure": float(out.mean_pressure),
               "iterations": float(out.iterations), "residual": float(out.residual)}
     for name, field in (("surface", h), ("pressure", out.pressure)):
-        t = analysis.anisotropy_tensor(field, zeta1, zeta2)
-        m = t.M.values
-        result.update({f"{name}_gamma": float(t.gamma), f"{name}_theta_d": float(t.theta_d),
-                       f"{name}_m_xx": float(m[0, 0]), f"{name}_m_xy": float(m[0, 1]), f"{name}_m_yy": float(m[1, 1])})
+        result.update(anisotropy_summary(name, field, zeta1, zeta2))
     if save_fields:
         p = out.pressure.reset_coords(drop=True)
         p.attrs = {}

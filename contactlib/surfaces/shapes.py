@@ -62,6 +62,11 @@ def spheres(n: int, *, length: float = 1.0, radius, summit_height=0.0, centers=N
     Summit heights are ``summit_height`` plus Gaussian scatter of std ``height_std``;
     ``radius`` may be one value or one per asperity. Each cap is the exact sphere
     ``z_k - R_k + sqrt(R_k^2 - r^2)`` (nearest periodic image), truncated at the base 0.
+
+    The returned DataArray carries its asperity table in ``attrs`` (1D arrays, one entry per
+    asperity): ``asperity_center_x``, ``asperity_center_y`` [length] (2D only), ``asperity_radius``
+    [length] and ``asperity_summit_height`` [length], so the same object feeds :func:`contactlib.solve`
+    and :func:`contactlib.two_scale.solve`.
     """
     grid = _grid(n, length, dim)
     rng = np.random.default_rng(seed)
@@ -82,11 +87,27 @@ def spheres(n: int, *, length: float = 1.0, radius, summit_height=0.0, centers=N
     xs = grid.coordinates()
     h = np.zeros(grid.shape)
     for c, R, z in zip(centers, radii, tops):
-        d2 = np.zeros(grid.shape)
+        if not z > 0:
+            continue  # a cap at or below the base leaves it unchanged
+        # only the footprint (radius sqrt(z (2R - z)) or R) can rise above the base: compute the cap on its
+        # bounding box of nodes (the same values as on the whole grid, in far fewer operations)
+        reach = np.sqrt(z * (2 * R - z)) if z < R else R
+        box = []
         for axis, x in enumerate(xs):
-            dx = (x - c[axis] + length / 2) % length - length / 2
+            n_axis, step = grid.shape[axis], grid.spacing[axis]
+            half = int(np.ceil(reach / step)) + 1
+            if 2 * half + 1 >= n_axis:
+                box.append(np.arange(n_axis))
+            else:
+                box.append((int(np.rint(c[axis] / step)) + np.arange(-half, half + 1)) % n_axis)
+        d2 = np.zeros(tuple(len(b) for b in box))
+        for axis, (x, b) in enumerate(zip(xs, box)):
+            dx = (x[b] - c[axis] + length / 2) % length - length / 2
             d2 = d2 + (dx[:, None] ** 2 if (dim == 2 and axis == 0) else dx[None, :] ** 2 if dim == 2 else dx**2)
         cap = np.where(d2 < R**2, z - R + np.sqrt(np.clip(R**2 - d2, 0, None)), -np.inf)
-        h = np.maximum(h, cap)
+        block = np.ix_(*box)
+        h[block] = np.maximum(h[block], cap)
+    table = {f"asperity_center_{axis}": np.array(centers[:, i]) for i, axis in enumerate("xy"[:dim])}
+    table.update(asperity_radius=np.array(radii, dtype=float), asperity_summit_height=np.array(tops, dtype=float))
     return _as_dataarray(h, grid, length_unit, generator="contactlib.surfaces.spheres", periodic=1, asperities=k,
-                         seed=seed)
+                         seed=seed, **table)

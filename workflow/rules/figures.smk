@@ -119,6 +119,87 @@ rule plot_fig6a_interlocking:
         "../scripts/plot_fig6a_interlocking.py"
 
 
+rule plot_fig2_viscoelastic_map:
+    input:
+        data="results/fig2_viscoelastic_map.nc",
+    output:
+        report(
+            "results/figures/fig2_viscoelastic_map.png",
+            caption="../report/fig2_viscoelastic_map.rst",
+            category="Viscoelastic sliding",
+        ),
+    log:
+        "logs/plot/fig2_viscoelastic_map.log",
+    conda:
+        "../envs/contactlib.yaml"
+    script:
+        "../scripts/plot_fig2_viscoelastic_map.py"
+
+
+rule plot_fig3_anisotropy_polar:
+    input:
+        data="results/fig3_anisotropy_polar.nc",
+    output:
+        report(
+            "results/figures/fig3_anisotropy_polar.png",
+            caption="../report/fig3_anisotropy_polar.rst",
+            category="Viscoelastic sliding",
+        ),
+    log:
+        "logs/plot/fig3_anisotropy_polar.log",
+    conda:
+        "../envs/contactlib.yaml"
+    script:
+        "../scripts/plot_fig3_anisotropy_polar.py"
+
+
+rule plot_fig6b_viscoelastic_layer:
+    input:
+        data="results/fig6b_viscoelastic_layer.nc",
+    output:
+        report(
+            "results/figures/fig6b_viscoelastic_layer.png",
+            caption="../report/fig6b_viscoelastic_layer.rst",
+            category="Viscoelastic sliding",
+        ),
+    log:
+        "logs/plot/fig6b_viscoelastic_layer.log",
+    conda:
+        "../envs/contactlib.yaml"
+    script:
+        "../scripts/plot_fig6b_viscoelastic_layer.py"
+
+
+rule plot_friction_speed:
+    input:
+        data="results/friction_speed.nc",
+    output:
+        report(
+            "results/figures/friction_speed.png",
+            caption="../report/friction_speed.rst",
+            category="Viscoelastic sliding",
+        ),
+    log:
+        "logs/plot/friction_speed.log",
+    conda:
+        "../envs/contactlib.yaml"
+    script:
+        "../scripts/plot_friction_speed.py"
+rule plot_two_scale:
+    input:
+        data="results/two_scale.nc",
+    output:
+        report(
+            "results/figures/two_scale.png",
+            caption="../report/two_scale.rst",
+            category="Two-scale method",
+        ),
+    log:
+        "logs/plot/two_scale.log",
+    conda:
+        "../envs/contactlib.yaml"
+    script:
+        "../scripts/plot_two_scale.py"
 rule plot_fig4_adhesive_layers:
     input:
         data="results/fig4_adhesive_layers.nc",

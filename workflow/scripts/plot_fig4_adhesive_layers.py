@@ -26,13 +26,15 @@ for ax, base in zip(axes[0], ds.layer_base.values):
         (line,) = ax.plot(d, sel.sel(branch="loading"), lw=1.2, label=f"q0 h = {t:g}")
         if "unloading" in ds.branch.values:
             ax.plot(d, sel.sel(branch="unloading"), lw=1.2, ls="--", color=line.get_color())
-        pull = float(ds.scaled_pull_off_pressure.sel(layer_base=base, scaled_layer_thickness=t).max())
-        at = sel.where(sel == sel.min(), drop=True)
-        ax.plot(at[d.name].values[:1], [pull], "o", color=line.get_color(), ms=5)
-        print(f"{base} q0 h = {t:g}: pull-off {pull:+.4f}", file=sys.stderr)
+        one = ds.sel(layer_base=base, scaled_layer_thickness=t).max(["scaled_penetration", "branch"])
+        pull, at = float(one.scaled_load_pull_off_pressure), float(one.scaled_load_pull_off_penetration)
+        ax.plot([at], [pull], "o", color=line.get_color(), ms=5)
+        print(f"{base} q0 h = {t:g}: load-control pull-off {pull:+.4f} at {at:+.2f}, most tensile "
+              f"{float(one.scaled_pull_off_pressure):+.4f}, jump to full contact {int(one.jump_to_full_contact)}",
+              file=sys.stderr)
     ax.axhline(0.0, color="k", lw=0.6, ls=":")
     ax.set(xlabel=label(d), ylabel=label(p), title=f"({'ab'[list(ds.layer_base.values).index(base)]}) {base}")
     ax.legend(fontsize=7)
 fig.suptitle(f"{ds.attrs['title']} ({ds.attrs['scale']} scale); solid: loading, dashed: unloading, "
-             "dots: pull-off", fontsize=9)
+             "dots: pull-off under load control (none: beyond the path)", fontsize=9)
 fig.savefig(sm.output[0], dpi=120)

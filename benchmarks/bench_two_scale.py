@@ -1,0 +1,102 @@
+"""Two-scale asperity method against contactlib's full FFT solver: error and wall time against the number
+of asperities and their density (issue 17).
+
+Fields of :func:`contactlib.two_scale.random_asperity_field` (periodic unit window, random sequential
+addition at ``--coverages``: the fraction under footprints, 0.05 sparse to 0.4 nearly touching), with the
+grid chosen for ``--nodes-per-radius`` nodes per Hertz contact radius at the approach ``0.4 z``
+(``z``: mean summit height), the same grid for the full solver and the micro scale ("matched
+resolution"). Displacement control at that approach for all three, so the total force is an output:
+
+* **reference**: ``contactlib.solve(..., tol=--ref-tol)`` (1e-8);
+* **full**: ``contactlib.solve(..., tol=--full-tol)`` (1e-4, far below 1 % force error), timed;
+* **two-scale**: ``contactlib.two_scale.solve(..., tol=--two-scale-tol)`` (1e-3 on the pressure change), timed;
+* **macro**: ``scale="macro", fields=False``, timed.
+
+Errors against the reference: total force, per-asperity force (max over asperities of ``|P_k - P_k^ref|``
+over the largest ``P_k^ref``), contact area, pressure field (relative L2; the macro field is Hertz's
+pressure of each macro force). Times: one warm-up solve of each (FFT plans, JIT), then ``--repeats``
+solves interleaved (macro, two-scale, full in turn) and the median; ratios are full / method from the
+same run. Grids above ``--max-nodes`` points per side are skipped (the full solver's memory and time on a
+small machine), and said so.
+
+Run ``python benchmarks/bench_two_scale.py --help``; ``--json`` writes every number.
+"""
+
+from __future__ import annotations
+
+import os
+
+for _var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
+    os.environ.setdefault(_var, "1")
+
+import argparse
+import json
+import math
+import sys
+from pathlib import Path
+
+from contactlib.studies.two_scale import compare_methods, nodes_per_spacing
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from bench_solver import host_info  # noqa: E402
+
+E, NU = 1.0, 0.5
+
+
+def run_case(count: int, coverage: float, args) -> dict:
+    """One field: :func:`contactlib.studies.two_scale.compare_methods` (the study's own point), or the reason
+    it was skipped."""
+    n = int(round(nodes_per_spacing(coverage, args.nodes_per_radius) * math.sqrt(count)))
+    case = {"count": count, "coverage": coverage, "n": n}
+    if n > args.max_nodes:
+        case["skipped"] = f"grid {n}^2 above --max-nodes {args.max_nodes}"
+        return case
+    try:
+        case.update(compare_methods(count=count, coverage=coverage, seed=args.seed,
+                                    nodes_per_radius=args.nodes_per_radius, full_tol=args.full_tol,
+                                    two_scale_tol=args.two_scale_tol, repeats=args.repeats, E=E, nu=NU,
+                                    tol=args.ref_tol))
+    except (ValueError, RuntimeError) as err:  # a refused scene or a non-convergence is a result too
+        case["skipped"] = f"{type(err).__name__}: {err}"
+    return case
+
+
+def main(argv=None) -> None:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("--counts", type=int, nargs="+", default=[10, 100, 1000, 10000])
+    parser.add_argument("--coverages", type=float, nargs="+", default=[0.05, 0.2, 0.4])
+    parser.add_argument("--nodes-per-radius", type=float, default=3.0)
+    parser.add_argument("--ref-tol", type=float, default=1e-8)
+    parser.add_argument("--full-tol", type=float, default=1e-4)
+    parser.add_argument("--two-scale-tol", type=float, default=1e-3)
+    parser.add_argument("--repeats", type=int, default=3)
+    parser.add_argument("--max-nodes", type=int, default=4096)
+    parser.add_argument("--seed", type=int, default=0)
+    parser.add_argument("--json", type=Path)
+    args = parser.parse_args(argv)
+    rows = []
+    print(f"# bench_two_scale ({host_info()})\n")
+    print("| N | coverage | n | in contact | full s | two-scale s | macro s | full/two-scale | full/macro | "
+          "two-scale force err | two-scale max asperity err | macro force err | macro max asperity err | "
+          "full force err | outer its |")
+    print("|" + "---|" * 15)
+    for count in args.counts:
+        for coverage in args.coverages:
+            case = run_case(count, coverage, args)
+            rows.append(case)
+            if "skipped" in case:
+                print(f"| {count} | {coverage} | {case['n']} | {case['skipped']} |" + " |" * 11, flush=True)
+            else:
+                print(f"| {count} | {coverage} | {case['n']} | {case['in_contact']} | {case['full_time']:.3g} | "
+                      f"{case['two_scale_time']:.3g} | {case['macro_time']:.3g} | {case['two_scale_speedup']:.2f} | "
+                      f"{case['macro_speedup']:.1f} | {case['two_scale_force_error']:.1e} | "
+                      f"{case['two_scale_asperity_force_error']:.1e} | {case['macro_force_error']:.1e} | "
+                      f"{case['macro_asperity_force_error']:.1e} | {case['full_force_error']:.1e} | "
+                      f"{case['two_scale_iterations']} |", flush=True)
+    if args.json:
+        args.json.write_text(json.dumps({"host": host_info(), "args": {k: str(v) for k, v in vars(args).items()},
+                                         "rows": rows}, indent=1))
+
+
+if __name__ == "__main__":
+    main()

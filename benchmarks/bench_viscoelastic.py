@@ -1,0 +1,133 @@
+"""What steady viscoelastic sliding costs over the elastic solve of the same scene.
+
+Two measurements, printed as markdown tables (machine and versions in the header) and written with every
+number to ``--json``:
+
+1. **steady**: a 2D self-affine surface (``--sizes``, q_cutoff = n/8, rms slope 0.1) on a standard linear
+   solid (``--ratio`` E_inf/E0 = 10, nu = 0.5), sliding along x at ``zeta = V tau q0`` (``--zetas``, the
+   middle of the band by default), over the elastic solve of the same surface at the relaxed modulus E0,
+   each at the mean pressure that gives ``--contact`` (10 % and 50 %) elastically. Interleaved repeats,
+   medians; iterations and outer iterations reported.
+2. **sweep**: ``--sweep-speeds`` speeds log-spaced over ``zeta`` 1e-3..1e3, walked upwards with each solve
+   warm-started from the last (as the ``friction_speed`` study does), over one elastic solve.
+
+Run ``python benchmarks/bench_viscoelastic.py --help``.
+"""
+
+from __future__ import annotations
+
+import os
+
+for _var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
+    os.environ.setdefault(_var, "1")
+
+import argparse
+import json
+import statistics
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+import contactlib  # noqa: E402
+from bench_solver import host_info  # noqa: E402
+
+
+def surface(n: int, seed: int = 1):
+    return contactlib.surfaces.self_affine(n, hurst=0.8, q_roll=2, q_cutoff=n // 8, rms_slope=0.1, seed=seed)
+
+
+def load_for(h, target: float) -> float:
+    """Mean pressure [E0 units] giving ``target`` contact elastically (bisection on the log of the load)."""
+    lo, hi = 1e-4, 1.0
+    for _ in range(30):
+        mid = np.sqrt(lo * hi)
+        area = float(contactlib.solve(h, E=1.0, nu=0.5, mean_pressure=mid, tol=1e-6).contact_area)
+        lo, hi = (mid, hi) if area < target else (lo, mid)
+        if abs(area - target) < 0.01:
+            break
+    return float(mid)
+
+
+def timed(fn, repeats: int):
+    times, out = [], None
+    for _ in range(repeats):
+        t0 = time.perf_counter()
+        out = fn()
+        times.append(time.perf_counter() - t0)
+    return statistics.median(times), out
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("--sizes", type=int, nargs="+", default=[512, 1024])
+    ap.add_argument("--contact", type=float, nargs="+", default=[0.1, 0.5])
+    ap.add_argument("--zetas", type=float, nargs="+", default=[1.0])
+    ap.add_argument("--ratio", type=float, default=10.0)
+    ap.add_argument("--repeats", type=int, default=3)
+    ap.add_argument("--sweep-speeds", type=int, default=30)
+    ap.add_argument("--sweep-size", type=int, default=512)
+    ap.add_argument("--tol", type=float, default=1e-8)
+    ap.add_argument("--json", type=Path)
+    args = ap.parse_args(argv)
+    material = contactlib.Viscoelastic.standard_linear_solid(E0=1.0, E_inf=args.ratio, tau=1.0, nu=0.5)
+    info = host_info()
+    print(f"# steady viscoelastic sliding against elastic ({info.get('cpu', '?')}, contactlib {contactlib.__version__})")
+    print("\n| n | contact | zeta | elastic [s] | viscoelastic [s] | ratio | iterations (outer) | area elastic -> sliding |")
+    print("|---|---|---|---|---|---|---|---|")
+    rows = []
+    for n in args.sizes:
+        h = surface(n)
+        q0 = 2 * np.pi / 1.0
+        for target in args.contact:
+            p = load_for(h, target)
+            for zeta in args.zetas:
+                V = (zeta / q0, 0.0)
+
+                def elastic():
+                    return contactlib.solve(h, E=1.0, nu=0.5, mean_pressure=p, tol=args.tol)
+
+                def sliding():
+                    return contactlib.solve(h, material=material, mean_pressure=p, sliding_velocity=V, tol=args.tol)
+
+                elastic(), sliding()  # warm-up: FFTW plans
+                te, oe, tv, ov = [], None, [], None
+                for _ in range(args.repeats):  # interleaved: the machine's load hits both alike
+                    t, oe = timed(elastic, 1)
+                    te.append(t)
+                    t, ov = timed(sliding, 1)
+                    tv.append(t)
+                row = {"n": n, "contact": target, "zeta": zeta, "elastic_s": statistics.median(te),
+                       "viscoelastic_s": statistics.median(tv), "iterations": int(ov.iterations),
+                       "outer_iterations": int(ov.get("outer_iterations", 0)), "elastic_iterations": int(oe.iterations),
+                       "area_elastic": float(oe.contact_area), "area_sliding": float(ov.contact_area)}
+                row["ratio"] = row["viscoelastic_s"] / row["elastic_s"]
+                rows.append(row)
+                print(f"| {n} | {target:.0%} | {zeta:g} | {row['elastic_s']:.3f} | {row['viscoelastic_s']:.3f} | "
+                      f"{row['ratio']:.1f}x | {row['iterations']} ({row['outer_iterations']}) vs "
+                      f"{row['elastic_iterations']} | {row['area_elastic']:.3f} -> {row['area_sliding']:.3f} |",
+                      flush=True)
+    h = surface(args.sweep_size)
+    p = load_for(h, 0.1)
+    zetas = np.logspace(-3, 3, args.sweep_speeds)
+    t_el, _ = timed(lambda: contactlib.solve(h, E=1.0, nu=0.5, mean_pressure=p, tol=args.tol), args.repeats)
+    t0 = time.perf_counter()
+    warm = None
+    for zeta in zetas:
+        out = contactlib.solve(h, material=material, mean_pressure=p, sliding_velocity=(zeta / (2 * np.pi), 0.0),
+                               tol=args.tol, initial_pressure=warm)
+        warm = out.pressure.values
+    t_sweep = time.perf_counter() - t0
+    sweep = {"n": args.sweep_size, "speeds": args.sweep_speeds, "sweep_s": t_sweep, "elastic_s": t_el,
+             "ratio": t_sweep / t_el}
+    print(f"\n# speed sweep: {args.sweep_speeds} speeds, zeta 1e-3..1e3, warm-started, {args.sweep_size}^2 at 10 % "
+          f"contact: {t_sweep:.2f} s = {sweep['ratio']:.1f}x one elastic solve ({t_el:.3f} s)")
+    if args.json:
+        args.json.write_text(json.dumps({"host": info, "steady": rows, "sweep": sweep}, indent=1))
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())

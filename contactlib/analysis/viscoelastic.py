@@ -1,0 +1,83 @@
+"""Energy of steady viscoelastic sliding: the power the body dissipates.
+
+In the frame of the rigid surface the fields are steady, so at a material point ``du/dt = -V . grad u``
+and the power the surface tractions put into the body, per unit area, is
+``P = mean(t . (-V . grad u))``. In Fourier space, with ``u(q) = M(q) t(q)`` and
+``M = (elastic tensor at E0) x E0 / E*(-q . V)`` (:mod:`contactlib.kernels.viscoelastic`)::
+
+    P = sum_q (q . V) Im[t(q)^H M(q) t(q)] / n^2,
+
+and for a normal load alone, written with the displacement spectrum and the loss modulus
+``E''`` [pressure] instead of the pressure (:func:`dissipated_power`)::
+
+    P = sum_q (q . V) E''(q . V) |u(q)|^2 / C1(q) / n^2,
+
+``C1`` the elastic normal compliance at unit modulus. In steady state all of it is dissipated
+(nothing is stored over a period), so it equals the friction force times the speed: the energy balance
+that tests/test_viscoelastic.py checks against the interlocking friction.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..grid import Grid
+from ..kernels.tensor import surface_green_tensor
+from .statistics import _half_spectrum_weights, _values_and_grid
+
+
+def _along(grid: Grid, velocity) -> np.ndarray:
+    """``q . V`` [rad/time] on the rfft layout."""
+    return sum(q * float(v) for q, v in zip(grid.wavevectors(), velocity))
+
+
+def dissipated_power(displacement, *, material, sliding_velocity, length=None, layer=None) -> float:
+    """Power dissipated per unit area [pressure length/time] by a body under a steady sliding normal
+    load, from its normal surface ``displacement`` [length] and the material's loss modulus (module
+    docstring). Frictionless: a Coulomb traction adds its own work (the solver's
+    ``dissipated_power`` includes it).
+
+    Parameters
+    ----------
+    displacement : DataArray or ndarray
+        Normal surface displacement, periodic, positive into the body (``solve(...).displacement``).
+    material : contactlib.Viscoelastic or contactlib.Elastic
+    sliding_velocity : sequence of float
+        Velocity of the rigid surface relative to the body [length/time], one component per axis.
+    length : float or tuple, optional
+        Window size for an ndarray.
+    layer : contactlib.Layer, optional
+        The layer the displacement is on (its normal compliance replaces the half-space's).
+    """
+    values, grid = _values_and_grid(displacement, length)
+    velocity = np.broadcast_to(np.asarray(sliding_velocity, dtype=float), (grid.dim,))
+    along = _along(grid, velocity)
+    unit = surface_green_tensor(grid, 1.0, material.nu, *((layer.thickness, layer.base) if layer else ()))
+    nonzero = grid.wavenumber() > 0
+    loss = np.zeros(grid.spectral_shape())
+    loss[nonzero] = material.complex_modulus(along[nonzero]).imag / unit.normal[nonzero]
+    power = np.abs(np.fft.rfftn(values)) ** 2 * _half_spectrum_weights(grid)
+    return float(np.sum(power * along * loss) / grid.size**2)
+
+
+def traction_power(grid: Grid, pressure: np.ndarray, tensor, sliding_velocity, *, friction: float = 0.0,
+                   direction: float = 0.0) -> float:
+    """``sum_q (q . V) Im[t^H M t] / n^2`` [pressure length/time]: the power per unit area of the traction
+    ``t = (mu p s, p)`` on a body whose (complex) Green's tensor is ``tensor`` (module docstring).
+
+    With ``t`` along ``s`` the normal-tangential terms cancel in ``t^H M t``, leaving
+    ``|p|^2 (Czz + mu^2 (Cxx (n . s)^2 + Canti (t . s)^2))`` with ``n = q/|q|``, ``t`` across it.
+    """
+    spectrum = np.fft.rfftn(pressure)
+    form = tensor.normal
+    if friction > 0:
+        k = grid.wavenumber()
+        safe = np.where(k > 0, k, 1.0)
+        if grid.dim == 1:
+            form = form + friction**2 * tensor.inplane
+        else:
+            qx, qy = grid.wavevectors()
+            along = (qx * np.cos(direction) + qy * np.sin(direction)) / safe
+            form = form + friction**2 * (tensor.inplane * along**2 + tensor.antiplane * (1 - along**2))
+    power = np.abs(spectrum) ** 2 * _half_spectrum_weights(grid)
+    return float(np.sum(power * _along(grid, sliding_velocity) * np.imag(form)) / grid.size**2)

@@ -1,0 +1,41 @@
+"""The ``friction_speed`` study: the hysteretic friction coefficient and the contact area of a 2D rough
+surface sliding on a standard linear solid, against ``zeta = V tau q0`` (the bell-shaped curve), for
+several ``E_inf / E0`` and seeds. The load is fixed as a fraction of the relaxed contact modulus times
+the rms slope; each seed's speeds are walked upwards, each solve warm-started from the last.
+"""
+
+from __future__ import annotations
+
+from .. import analysis
+from ..contact import solve
+from ._common import rough_surface
+from ._viscoelastic_scene import SCENE_VARIABLES, material, model_flag, relaxed_contact_modulus, speed
+
+
+VARIABLES: dict[str, dict[str, str]] = dict(SCENE_VARIABLES)
+
+
+def friction_speed_point(*, zeta: float, glassy_ratio: float, seed: int, n: int, hurst: float, q_low: float,
+                         q_roll: float, q_cutoff: float, rms_slope: float, reduced_pressure: float, E: float,
+                         tau: float, nu: float, tol: float, max_iter: int, kernel: str, initial_pressure=None) -> dict:
+    """``mu_a``, contact area and dissipated power at ``zeta``, sliding along +x at mean pressure
+    ``reduced_pressure * E0* * rms slope``."""
+    h = rough_surface(n=n, hurst=hurst, seed=seed, q_low=q_low, q_roll=q_roll, q_cutoff=q_cutoff, rms_slope=rms_slope)
+    m = material(E0=E, glassy_ratio=glassy_ratio, tau=tau, nu=nu)
+    slope = analysis.rms_slope(h)
+    out = solve(h, material=m, mean_pressure=reduced_pressure * relaxed_contact_modulus(m) * slope,
+                sliding_velocity=(speed(zeta, tau=tau, length=1.0), 0.0), tol=tol, max_iter=max_iter,
+                kernel=kernel, initial_pressure=initial_pressure)
+    return {"friction_coefficient_interlocking": float(out.friction_coefficient_interlocking),
+            "contact_area": float(out.contact_area), "mean_pressure": float(out.mean_pressure),
+            "dissipated_power": float(out.dissipated_power), "rms_slope": slope, "viscoelastic_model": model_flag(out),
+            "iterations": float(out.iterations), "outer_iterations": float(out.get("outer_iterations", 0)),
+            "residual": float(out.residual), "_warm_start": out.pressure.values}
+
+
+def speed_shapes(grid: dict, constants: dict) -> list[tuple[int, ...]]:
+    return [(constants["n"], constants["n"])]
+
+
+STUDY = {"point": friction_speed_point, "fft_shapes": speed_shapes, "path_dim": "zeta",
+         "surface_keys": ("seed",)}

@@ -1,0 +1,268 @@
+"""The two-scale asperity method (seed paper 1): macro-scale forces per asperity with their elastic
+interaction, then micro-scale local FFT solves, for fields of separate spherical asperities.
+
+Elastic half-space only. The viscoelastic extension (the seed's eq. 4: the same two scales inside a
+time step with the pressure rate constant over the step) waits for contactlib's transient
+viscoelastic time stepping; :func:`contactlib.two_scale.macro.solve_macro` and
+:func:`contactlib.two_scale.micro.solve_micro` take the approach, the load and the compliance as
+plain arguments so that a time-stepping caller can call them once per step.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+
+import numpy as np
+import xarray as xr
+
+from .. import surfaces
+from .._version import __version__
+from ..contact import ConvergenceError
+from ..labels import attrs_for
+from ..materials import contact_modulus
+from ..operators import Compliance
+from .asperities import AsperityTable, asperity_forces, asperity_table
+from .fields import random_asperity_field
+from .interaction import PointInteraction
+from .macro import HertzLaw, MacroState, solve_macro
+from .micro import MicroState, hertz_pressure_field, solve_micro, window_size
+
+SCALES = ("macro", "two-scale")
+
+__all__ = ["solve", "asperity_table", "asperity_forces", "random_asperity_field", "AsperityTable", "PointInteraction", "HertzLaw", "solve_macro", "solve_micro",
+           "MacroState", "MicroState", "SCALES"]
+
+
+def _material(material, E, nu) -> tuple[float, float]:
+    """``(E, nu)`` from a material object with attributes ``E`` and ``nu``, or from the keywords."""
+    if material is not None:
+        if E is not None or nu is not None:
+            raise ValueError("material: give material=... or E= and nu=, not both")
+        if not (hasattr(material, "E") and hasattr(material, "nu")):
+            raise ValueError(f"material must have attributes E and nu (an elastic material), got {material!r}")
+        E, nu = material.E, material.nu
+    if E is None or nu is None:
+        raise ValueError("material: give material=contactlib.Elastic(E, nu) or both E= and nu=")
+    return E, nu
+
+
+def solve(
+    asperities,
+    *,
+    material=None,
+    E: float | None = None,
+    nu: float | None = None,
+    mean_pressure: float | None = None,
+    penetration: float | None = None,
+    scale: str = "two-scale",
+    periodic: bool | None = None,
+    length: float | None = None,
+    n: int | None = None,
+    tol: float = 1e-6,
+    macro_tol: float = 1e-10,
+    max_iter: int = 200,
+    fields: bool = True,
+    length_unit: str = "m",
+    pressure_unit: str = "Pa",
+) -> xr.Dataset:
+    """Normal contact of a rigid field of spherical asperities on an elastic half-space, by the
+    two-scale method.
+
+    Parameters
+    ----------
+    asperities : xarray.DataArray or xarray.Dataset
+        The heights from :func:`contactlib.surfaces.spheres` (they carry their asperity table, and
+        their grid is the micro scale's), or a Dataset with ``center_x``, ``center_y``, ``radius``,
+        ``summit_height`` [length] on an ``asperity`` dimension (window in ``attrs['length']`` or
+        ``length``; the micro scale then builds the caps on an ``n x n`` grid).
+    material : object with attributes ``E`` [pressure] and ``nu`` [1], optional
+        E.g. ``contactlib.Elastic(E, nu)``; or give ``E`` and ``nu``.
+    E, nu : float, optional
+        Young's modulus [pressure] and Poisson ratio.
+    mean_pressure : float
+        Load control: total force over the window area [pressure].
+    penetration : float
+        Displacement control: rigid approach from first contact of the highest point [length] (the
+        highest grid node when there is a grid, as :func:`contactlib.solve`, else the highest summit).
+        Periodic: measured against the mean deformed plane, as in :func:`contactlib.solve`.
+    scale : {"two-scale", "macro"}
+        ``"macro"``: forces from Hertz's law with the point-load interaction only (seed eq. 3);
+        ``"two-scale"``: then the local FFT solves to the full solver's answer.
+    periodic : bool, optional
+        Default: the input's ``attrs['periodic']``, else True.
+    length : float, optional
+        Window size [length] for a Dataset.
+    n : int, optional
+        Grid points per side for the micro scale of a Dataset.
+    tol : float
+        Two-scale: largest relative change of the pressure field between outer iterations [1].
+    macro_tol : float
+        Macro: Newton residual, relative to the largest local penetration [1].
+    max_iter : int
+        Newton iterations (macro) and outer iterations (two-scale) at most.
+    fields : bool
+        Also return ``pressure``, ``gap`` and ``displacement`` on the grid (for ``"macro"``: Hertz's
+        pressure of each force, and its displacement by one FFT).
+    length_unit, pressure_unit : str
+        udunits strings for the labels.
+
+    Returns
+    -------
+    xarray.Dataset
+        ``force`` [force], ``contact_radius`` [length], ``local_penetration`` [length] and
+        ``macro_force`` on the ``asperity`` dimension (coords ``center_x``, ``center_y``, ``radius``,
+        ``summit_height``); scalars ``contact_area``, ``mean_pressure``, ``penetration``,
+        ``iterations``, ``residual``; with a grid and ``fields``, ``pressure``, ``gap``,
+        ``displacement`` on ``x``, ``y``. ``attrs`` hold the parameters, the interaction method, the
+        iterations of both scales, ``wall_time`` [s] and the version.
+
+    Raises
+    ------
+    ValueError
+        Bad input, naming the parameter (see :func:`.asperity_table`), or a load beyond what separate
+        spherical contacts carry (a contact reaching its footprint's edge, the body reaching the base).
+    ConvergenceError
+        When the Newton iteration or the outer iteration does not reach its tolerance; it holds the
+        residual and the partial Dataset.
+
+    Examples
+    --------
+    >>> import contactlib
+    >>> h = contactlib.surfaces.spheres(256, radius=0.5, lattice=4, summit_height=0.01, height_std=0.001)
+    >>> out = contactlib.two_scale.solve(h, E=1.0, nu=0.5, mean_pressure=1e-4)
+    >>> out.force.dims
+    ('asperity',)
+    """
+    E, nu = _material(material, E, nu)
+    E_star = contact_modulus(E, nu)
+    if scale not in SCALES:
+        raise ValueError(f"scale must be one of {SCALES}, got {scale!r}")
+    if (mean_pressure is None) == (penetration is None):
+        raise ValueError("give exactly one of mean_pressure or penetration")
+    if mean_pressure is not None and not (math.isfinite(mean_pressure) and mean_pressure >= 0):
+        raise ValueError(f"mean_pressure must be finite and >= 0, got {mean_pressure!r}")
+    if penetration is not None and not math.isfinite(penetration):
+        raise ValueError(f"penetration must be finite, got {penetration!r}")
+    for name, value in (("tol", tol), ("macro_tol", macro_tol)):
+        if not (isinstance(value, (int, float)) and math.isfinite(value) and value > 0):
+            raise ValueError(f"{name} must be finite and > 0, got {value!r}")
+    if int(max_iter) < 1:
+        raise ValueError(f"max_iter must be >= 1, got {max_iter!r}")
+    table = asperity_table(asperities, length=length, periodic=periodic)
+    if table.grid is None and (scale == "two-scale" or n is not None):
+        if n is None:
+            raise ValueError("n: the two-scale method needs a grid; give n= (points per side) with a Dataset")
+        built = surfaces.spheres(int(n), length=table.length, radius=table.radius, summit_height=table.summit_height,
+                                 centers=table.centers)
+        table = AsperityTable(table.centers, table.radius, table.summit_height, table.length, table.periodic,
+                              np.asarray(built.values, dtype=float), asperity_table(built).grid)
+    z_top = float(table.heights.max()) if table.heights is not None else float(table.summit_height.max())
+    total_force = None if mean_pressure is None else float(mean_pressure) * table.length**2
+
+    start = time.perf_counter()
+    interaction = PointInteraction(table, E_star)
+    law = HertzLaw(table.radius, E_star)
+    macro = solve_macro(table, interaction, law, penetration=penetration, total_force=total_force, z_top=z_top,
+                        tol=macro_tol, max_iter=int(max_iter))
+    macro_wall = time.perf_counter() - start
+    params = {"scale": scale, "E": float(E), "nu": float(nu), "E_star": E_star, "periodic": int(table.periodic),
+              "load_control": "mean_pressure" if mean_pressure is not None else "penetration", "tol": tol,
+              "macro_tol": macro_tol, "max_iter": int(max_iter), "single_asperity_law": "hertz",
+              "macro_iterations": macro.iterations, "macro_residual": macro.residual, "macro_wall_time": macro_wall,
+              "contactlib_version": __version__, "window_lengths": [table.length, table.length],
+              "Conventions": "CF-1.10", **interaction.attrs}
+    if not macro.converged:
+        ds = _label(table, macro, None, params, E_star, z_top, length_unit, pressure_unit, fields=False)
+        ds.attrs["converged"] = 0
+        raise ConvergenceError(f"two_scale macro step: Newton did not converge in {macro.iterations} iterations: "
+                               f"residual {macro.residual:.3e} > macro_tol {macro_tol:.1e}",
+                               residual=macro.residual, dataset=ds)
+    _check_separate_contacts(table, law, macro, z_top)
+    micro = None
+    if scale == "two-scale":
+        micro = solve_micro(table, macro, law, E_star, interaction, z_top=z_top, total_force=total_force, tol=tol,
+                            max_iter=int(max_iter))
+        params.update(micro_iterations=micro.iterations, local_iterations=micro.local_iterations,
+                      micro_change=micro.change, micro_window=micro.window)
+    params["wall_time"] = time.perf_counter() - start
+    ds = _label(table, macro, micro, params, E_star, z_top, length_unit, pressure_unit, fields=fields)
+    if micro is not None and not micro.converged:
+        message = (f"two_scale micro step did not converge in {micro.iterations} outer iterations: pressure change "
+                   f"{micro.change:.3e} > tol {tol:.1e}")
+        ds.attrs["converged"] = 0
+        ds.attrs["convergence_message"] = message
+        raise ConvergenceError(message, residual=micro.change, dataset=ds)
+    return ds
+
+
+def _check_separate_contacts(table: AsperityTable, law: HertzLaw, macro: MacroState, z_top: float) -> None:
+    """Refuse a load beyond what separate spherical contacts carry, saying where the assumption breaks:
+    a cap pressed down to the base (local penetration >= summit height; its contact then fills the
+    footprint and meets the flat between asperities), or the body reaching the base plane."""
+    ratio = macro.local_penetration / table.summit_height
+    worst = int(np.argmax(ratio))
+    if ratio[worst] >= 1.0:
+        a = float(law.contact_radius(macro.local_penetration[worst : worst + 1])[0])
+        raise ValueError(
+            f"mean_pressure/penetration: the load is beyond what separate spherical contacts carry: asperity {worst} "
+            f"is pressed by {macro.local_penetration[worst]:.4g}, beyond its summit height "
+            f"{table.summit_height[worst]:.4g} (Hertz contact radius {a:.4g}, footprint radius "
+            f"{table.footprint_radius[worst]:.4g}), at approach {macro.penetration:.4g}: the body meets the base "
+            "around it and the contacts are no longer separate caps")
+    if macro.penetration >= z_top:
+        raise ValueError(f"mean_pressure/penetration: the approach {macro.penetration:.4g} reaches the base plane "
+                         f"(highest point {z_top:.4g}): the body touches between the asperities, so the contacts are "
+                         "no longer separate caps")
+
+
+def _label(table: AsperityTable, macro: MacroState, micro: MicroState | None, params: dict, E_star: float,
+           z_top: float, length_unit: str, pressure_unit: str, *, fields: bool) -> xr.Dataset:
+    """The labelled Dataset: per-asperity variables, scalars, and fields on the grid when asked."""
+    def a(name):
+        return attrs_for(name, length=length_unit, pressure=pressure_unit)
+
+    law = HertzLaw(table.radius, E_star)
+    macro_radius = law.contact_radius(macro.local_penetration)
+    area = table.length**2
+    coords = {"asperity": ("asperity", np.arange(table.count), a("asperity")),
+              "center_x": ("asperity", table.centers[:, 0], a("center_x")),
+              "center_y": ("asperity", table.centers[:, 1], a("center_y")),
+              "radius": ("asperity", table.radius, a("radius")),
+              "summit_height": ("asperity", table.summit_height, a("summit_height"))}
+    data = {"macro_force": ("asperity", macro.force, a("macro_force")),
+            "local_penetration": ("asperity", macro.local_penetration, a("local_penetration"))}
+    if micro is None:
+        force, radius = macro.force, macro_radius
+        contact_area = float(np.sum(np.pi * macro_radius**2)) / area
+        penetration, iterations, residual = macro.penetration, macro.iterations, macro.residual
+    else:
+        node_area = table.grid.element_area
+        force, radius = micro.force, np.sqrt(micro.contact_nodes * node_area / np.pi)
+        contact_area = float(np.count_nonzero(micro.pressure > 0)) / micro.pressure.size
+        penetration, iterations, residual = micro.penetration, micro.iterations, micro.residual
+    data["force"] = ("asperity", force, a("force"))
+    data["contact_radius"] = ("asperity", radius, a("contact_radius"))
+    scalars = {"contact_area": contact_area, "mean_pressure": float(np.sum(force)) / area,
+               "penetration": penetration, "iterations": iterations, "residual": residual}
+    data.update({k: ((), v, a(k)) for k, v in scalars.items()})
+    if fields and table.grid is not None:
+        grid = table.grid
+        if micro is not None:
+            pressure, displacement, gap = micro.pressure, micro.displacement, micro.gap
+        else:
+            window = window_size(table, grid=grid, contact_radius=macro_radius)
+            pressure = hertz_pressure_field(table, grid, macro.force, macro_radius, window)
+            displacement = Compliance(grid, E_star=E_star, periodic=table.periodic)(pressure)
+            gap = displacement + z_top - table.heights - macro.penetration
+        xs = grid.coordinates()
+        coords["x"] = ("x", xs[0], a("x"))
+        coords["y"] = ("y", xs[1], a("y"))
+        for name, value in (("pressure", pressure), ("displacement", displacement), ("gap", gap)):
+            data[name] = (("x", "y"), value, a(name))
+    ds = xr.Dataset(data, coords=coords)
+    ds.attrs.update(params)
+    ds.attrs.setdefault("converged", 1)
+    ds.attrs["title"] = "two-scale asperity contact (seed paper 1)"
+    ds.attrs["source"] = f"contactlib {__version__}, contactlib.two_scale.solve"
+    return ds

@@ -1,0 +1,207 @@
+"""Macro scale: one force per asperity, with their elastic interaction (seed paper 1, eqs. 1-3).
+
+With the rigid approach ``delta`` measured from the highest summit ``z_top``, asperity ``k`` indents
+the body by its local penetration
+
+    d_k = delta - (z_top - z_k) - u_k,    u_k = sum_l T_kl P_l,    P_k = f_k(d_k),
+
+with Hertz's law ``f_k(d) = (4/3) E* sqrt(R_k) max(d, 0)^(3/2)`` (Johnson eq. 4.23) and the point-load
+interaction ``T`` of :mod:`.interaction`. The seed writes eq. 3 in the forces; here the unknowns are
+the local penetrations ``d_k``:
+
+    F_k(d) = d_k - (delta - z_top + z_k) + sum_l T_kl f_l(d_l) = 0,
+
+because ``f`` is C^1 with ``f'(0) = 0``, so ``F`` is C^1 across contact and separation and Newton's
+method needs no active-set switching (an asperity leaving contact simply has ``d_k < 0`` and
+``f_k' = 0``), while ``f^-1(P) ~ P^(2/3)`` would make the force form stiff at ``P = 0``.
+
+Newton step: ``J = I + T D``, ``D = diag(f'(d))`` zero off contact. With ``y = D dd`` it reduces to the
+symmetric positive definite system ``(D_A^-1 + T_AA) y_A = -F_A`` on the asperities in contact ``A``
+(``D^-1`` is each Hertz contact's own compliance ``1 / (2 E* a)``), solved by preconditioned conjugate
+gradients with the matrix-free ``T``; then ``dd = -F - T y``. Load control adds ``delta`` as unknown and
+``sum_k P_k = P`` as equation (N + 1 equations): the bordered system is solved by block elimination
+(a second solve ``J b = 1``). Damped by backtracking on the residual norm.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.sparse.linalg import LinearOperator, cg
+
+from .asperities import AsperityTable
+from .interaction import PointInteraction
+
+
+@dataclass(frozen=True)
+class MacroState:
+    """Solution of the macro step.
+
+    Attributes
+    ----------
+    force : ndarray
+        ``P_k`` [force].
+    local_penetration : ndarray
+        ``d_k`` [length] (negative: separated by ``-d_k``).
+    penetration : float
+        Rigid approach ``delta`` from first contact of the highest summit [length].
+    iterations : int
+        Newton iterations.
+    residual : float
+        ``max_k |F_k|`` over the largest local penetration (and, under load control, the relative
+        force error, whichever is larger) [1].
+    converged : bool
+    """
+
+    force: np.ndarray
+    local_penetration: np.ndarray
+    penetration: float
+    iterations: int
+    residual: float
+    converged: bool
+
+
+class HertzLaw:
+    """Single-asperity law ``P = (4/3) E* sqrt(R) d^(3/2)`` and its derivative ``2 E* a``, ``a = sqrt(R d)``."""
+
+    def __init__(self, radius: np.ndarray, E_star: float):
+        self.radius, self.E_star = np.asarray(radius, dtype=float), float(E_star)
+
+    def force(self, d: np.ndarray) -> np.ndarray:
+        dp = np.maximum(d, 0.0)
+        return 4.0 / 3.0 * self.E_star * np.sqrt(self.radius) * dp**1.5
+
+    def slope(self, d: np.ndarray) -> np.ndarray:
+        return 2.0 * self.E_star * self.contact_radius(d)
+
+    def contact_radius(self, d: np.ndarray) -> np.ndarray:
+        return np.sqrt(self.radius * np.maximum(d, 0.0))
+
+
+def solve_macro(table: AsperityTable, interaction: PointInteraction, law: HertzLaw, *,
+                penetration: float | None = None, total_force: float | None = None, z_top: float | None = None,
+                known_displacement: np.ndarray | None = None, tol: float = 1e-10, max_iter: int = 100) -> MacroState:
+    """Solve eq. 3 of the seed for the asperity forces, under displacement or load control.
+
+    Parameters
+    ----------
+    table, interaction, law
+        The asperities, their interaction operator ``T`` and the single-asperity law.
+    penetration : float
+        Displacement control: ``delta`` [length].
+    total_force : float
+        Load control: ``sum_k P_k`` [force]; ``delta`` is then an unknown.
+    z_top : float, optional
+        Height from which ``delta`` is measured [length] (default: the highest summit).
+    known_displacement : ndarray, optional
+        A displacement of the body at each summit that does not depend on the forces sought [length]:
+        the hook for a time-stepping caller (the seed's eq. 4: over a step with a constant pressure rate,
+        the history's displacement is known and the increment solves this elastic problem with the
+        step's effective modulus in ``interaction`` and ``law``).
+    tol : float
+        Target of :attr:`MacroState.residual`.
+    max_iter : int
+        Newton iterations at most; the state returned says whether it converged.
+    """
+    z_top = float(table.summit_height.max()) if z_top is None else float(z_top)
+    # a known displacement lowers the summits it lifts the body above: the same problem, shifted heights
+    z = table.summit_height if known_displacement is None else \
+        table.summit_height - np.asarray(known_displacement, dtype=float)
+    load_control = total_force is not None
+    if load_control:
+        if total_force == 0:
+            return MacroState(np.zeros_like(z), z - z_top, 0.0, 0, 0.0, True)
+        delta = _uncoupled_approach(z - z_top, law, total_force)
+    else:
+        delta = float(penetration)
+    d = delta + z - z_top  # uncoupled start: each asperity as if alone
+    scale = max(float(np.max(np.abs(delta + z - z_top))), 1e-300)
+
+    def residual_of(d, delta):
+        F = d - (delta + z - z_top) + interaction(law.force(d))
+        norm = float(np.max(np.abs(F))) / scale
+        if load_control:
+            norm = max(norm, abs(float(law.force(d).sum()) - total_force) / total_force)
+        return F, norm
+
+    F, norm = residual_of(d, delta)
+    it = 0
+    for it in range(1, max_iter + 1):
+        if norm <= tol:
+            it -= 1
+            break
+        slope = law.slope(d)
+        rtol = min(1e-2, 0.1 * norm)  # inexact Newton: the linear solve only as tight as the step needs
+        a = _newton_solve(interaction, slope, -F, rtol=rtol)
+        if load_control:
+            b = _newton_solve(interaction, slope, np.ones_like(d), rtol=rtol)
+            sb = float(slope @ b)
+            if sb <= 0:
+                raise ValueError("mean_pressure: no asperity in contact during the Newton iteration")
+            step_delta = (total_force - float(law.force(d).sum()) - float(slope @ a)) / sb
+            step = a + b * step_delta
+        else:
+            step_delta, step = 0.0, a
+        lam = 1.0
+        for _ in range(40):  # backtracking: accept the first step that lowers the residual
+            d_new, delta_new = d + lam * step, delta + lam * step_delta
+            F_new, norm_new = residual_of(d_new, delta_new)
+            if norm_new < norm or lam < 1e-10:
+                break
+            lam *= 0.5
+        d, delta, F, norm = d_new, delta_new, F_new, norm_new
+    return MacroState(law.force(d), d, float(delta), it, norm, norm <= tol)
+
+
+def _newton_solve(interaction: PointInteraction, slope: np.ndarray, rhs: np.ndarray, *,
+                  rtol: float = 1e-12) -> np.ndarray:
+    """Solve ``(I + T D) x = rhs``, ``D = diag(slope)``, through the SPD system on the contact set."""
+    return rhs - interaction(solve_contact_compliance(interaction, slope, rhs, rtol=rtol))
+
+
+def solve_contact_compliance(interaction: PointInteraction, slope: np.ndarray, rhs: np.ndarray, *,
+                             rtol: float = 1e-12) -> np.ndarray:
+    """``y`` with ``(D_A^-1 + T_AA) y_A = rhs_A`` on the asperities in contact ``A = {slope > 0}`` and 0
+    elsewhere: the compliance of the contacts (each Hertz contact's own, ``1 / slope``, plus the
+    interaction) inverted by preconditioned conjugate gradients [force per unit of ``rhs``]."""
+    active = np.flatnonzero(slope > 0)
+    n = slope.size
+    y = np.zeros(n)
+    if active.size:
+        compliance = 1.0 / slope[active]  # each Hertz contact's own compliance 1/(2 E* a)
+        full = np.zeros(n)
+
+        def matvec(v):
+            full[...] = 0.0
+            full[active] = v
+            return compliance * v + interaction(full)[active]
+
+        operator = LinearOperator((active.size, active.size), matvec=matvec, dtype=float)
+        precondition = LinearOperator((active.size, active.size),
+                                      matvec=lambda v: v / (compliance + np.maximum(interaction.diagonal[active], 0)),
+                                      dtype=float)
+        y_active, _ = cg(operator, rhs[active], rtol=max(rtol, 1e-12), atol=0.0, maxiter=10 * active.size + 100, M=precondition)
+        y[active] = y_active
+    return y
+
+
+def _uncoupled_approach(offsets: np.ndarray, law: HertzLaw, total_force: float) -> float:
+    """``delta`` with ``sum_k f_k(delta + offsets_k) = total_force`` and no interaction (bisection)."""
+    lo = 0.0
+    scale = max(float(np.ptp(offsets)), float(np.max(law.radius)) * 1e-6)
+    hi = scale
+    while float(law.force(hi + offsets).sum()) < total_force:
+        hi *= 2.0
+        if not math.isfinite(hi):
+            raise ValueError(f"mean_pressure {total_force!r}: no approach carries this load")
+    for _ in range(200):
+        mid = 0.5 * (lo + hi)
+        if float(law.force(mid + offsets).sum()) < total_force:
+            lo = mid
+        else:
+            hi = mid
+        if hi - lo <= 1e-15 * max(hi, 1e-300):
+            break
+    return 0.5 * (lo + hi)
