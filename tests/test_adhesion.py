@@ -281,3 +281,35 @@ def test_nonconvergence_is_reported():
     finally:
         cohesive.MAX_NEWTON = saved
         glue.MAX_NEWTON = glue_saved
+
+
+def test_energy_path_survives_large_steps_on_a_stiff_layer():
+    """A thin incompressible confined layer, one large approach step: the domain grows to the tensile
+    Griffith root instead of descending the free energy into small, interpenetrating domains (it fell to
+    one element, unconverged, before); the same state as the direct solve, and as a path of small steps."""
+    q0 = 2 * np.pi
+    h = contactlib.surfaces.wavy(256, amplitude=2 / q0)
+    law = Adhesion(work=0.05 * np.pi / (0.75 * q0), model="jkr")
+    layer = contactlib.Layer(0.5 / q0, "confined")
+    coarse = contactlib.adhesion_curve(h, E=1.0, nu=0.5, adhesion=law, layer=layer, penetrations=[0.0, 0.9 * 2 / q0])
+    fine = contactlib.adhesion_curve(h, E=1.0, nu=0.5, adhesion=law, layer=layer,
+                                     penetrations=np.linspace(0.0, 0.9, 10) * 2 / q0)
+    direct = contactlib.solve(h, E=1.0, nu=0.5, adhesion=law, layer=layer, penetration=0.9 * 2 / q0)
+    assert int(coarse.converged[1]) == 1 and float(coarse.contact_area[1]) > 0.5
+    assert float(coarse.contact_area[1]) == float(fine.contact_area[9]) == float(direct.contact_area)
+    assert float(coarse.mean_pressure[1]) == pytest.approx(float(direct.mean_pressure), rel=1e-12)
+
+
+def test_fig4_load_control_pull_off():
+    """The study's load-control pull-off: the most tensile state whose pressure grows with the approach;
+    NaN where the path holds none."""
+    from contactlib.studies.fig4_adhesive_layers import load_control_pull_off
+
+    d = np.array([-0.2, -0.1, 0.0, 0.1, 0.2, 0.1, 0.0, -0.1, -0.2])
+    p = np.array([0.0, 0.0, -0.3, 0.5, 0.9, 0.5, -0.3, -0.4, 0.0])
+    area = np.array([0.0, 0.0, 0.2, 0.4, 0.5, 0.4, 0.2, 0.1, 0.0])
+    jump = np.array([0, 0, 1, 0, 0, 0, 0, 0, 1])
+    assert load_control_pull_off(d, p, area, jump) == (-0.4, -0.1, 0)
+    falling = np.array([0.0, 0.0, -0.3, -0.5, -0.6, -0.5, -0.3, -0.2, 0.0])  # more tensile as it closes: never held
+    pull, at, full = load_control_pull_off(d, falling, area, jump)
+    assert math.isnan(pull) and math.isnan(at) and full == 1

@@ -215,3 +215,20 @@ rule plot_fig4_adhesive_layers:
         "../envs/contactlib.yaml"
     script:
         "../scripts/plot_fig4_adhesive_layers.py"
+
+
+rule plot_adhesive_rough:
+    input:
+        data="results/adhesive_rough.nc",
+    output:
+        report(
+            "results/figures/adhesive_rough.png",
+            caption="../report/adhesive_rough.rst",
+            category="Adhesion on rough surfaces",
+        ),
+    log:
+        "logs/plot/adhesive_rough.log",
+    conda:
+        "../envs/contactlib.yaml"
+    script:
+        "../scripts/plot_adhesive_rough.py"

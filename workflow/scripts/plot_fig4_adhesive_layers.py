@@ -35,6 +35,6 @@ for ax, base in zip(axes[0], ds.layer_base.values):
     ax.axhline(0.0, color="k", lw=0.6, ls=":")
     ax.set(xlabel=label(d), ylabel=label(p), title=f"({'ab'[list(ds.layer_base.values).index(base)]}) {base}")
     ax.legend(fontsize=7)
-fig.suptitle(f"{ds.attrs['title']} ({ds.attrs['scale']} scale); solid: loading, dashed: unloading, "
+fig.suptitle(f"{ds.attrs['title']} ({ds.attrs['scale']} scale)\nsolid: loading, dashed: unloading, "
              "dots: pull-off under load control (none: beyond the path)", fontsize=9)
 fig.savefig(sm.output[0], dpi=120)
