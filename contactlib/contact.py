@@ -429,8 +429,10 @@ class _Setup:
                                                                pressure=pressure_unit))
 
     def check(self, state: ContactState, ds: xr.Dataset) -> None:
-        """Refuse a footprint cut by the window edge; raise :class:`ConvergenceError` if unconverged."""
-        if not self.operator.periodic and _touches_edge(state.pressure):
+        """Refuse a footprint cut by the window edge; raise :class:`ConvergenceError` if unconverged (first,
+        for an adhesive solve: a diverged cohesive iterate can touch the edge, which would hide why)."""
+        touches = not self.operator.periodic and _touches_edge(state.pressure)
+        if touches and (state.converged or self.adhesion is None):
             raise ValueError(
                 "periodic=False: the contact reaches the edge of the window, so the surface outside it would "
                 "carry load too; enlarge the window (or use periodic=True for a periodic surface)"
