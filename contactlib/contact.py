@@ -369,12 +369,7 @@ class _Setup:
 
     def _symmetric(self, heights, *, monitor=None, verify_below=None, **args) -> ContactState:
         """The constrained CG of the symmetric compliance (the whole problem, or a coupled solve's inner one)."""
-        if not self.operator.definite and args["penetration"] is not None:
-            # the primal iteration cannot be preconditioned there; its dual can (solvers/dual.py)
-            args = {k: v for k, v in args.items() if k != "mean_pressure"}
-            return solve_periodic_displacement(self.operator, heights, monitor=monitor, verify_below=verify_below,
-                                               **args)
-        return solve_polonsky_keer(self.operator, heights, monitor=monitor, **args)
+        return constrained_solve(self.operator, heights, monitor=monitor, verify_below=verify_below, **args)
 
     def label(self, state: ContactState, wall: float, *, length_unit: str, pressure_unit: str,
               tol: float | None = None) -> xr.Dataset:
@@ -447,6 +442,21 @@ class _Setup:
                           if stalled else ""))
             ds.attrs["convergence_message"] = message  # the partial state says why it is partial
             raise ConvergenceError(message, residual=state.residual, dataset=ds)
+
+
+def constrained_solve(operator, heights, *, monitor=None, verify_below=None, restart_fraction=None,
+                      **args) -> ContactState:
+    """Frictionless contact on a symmetric compliance: Polonsky-Keer, or its dual under periodic displacement
+    control, where the primal iteration cannot be preconditioned (:mod:`contactlib.solvers.dual`).
+    ``args``: ``mean_pressure``, ``penetration`` (one of them None), ``tol``, ``max_iter``, ``initial_pressure``;
+    ``restart_fraction``: Polonsky-Keer's (default :data:`contactlib.solvers.ccg.RESTART_FRACTION`; the dual
+    restarts on every re-entry)."""
+    if not operator.definite and args["penetration"] is not None:
+        args = {k: v for k, v in args.items() if k != "mean_pressure"}
+        return solve_periodic_displacement(operator, heights, monitor=monitor, verify_below=verify_below, **args)
+    if restart_fraction is not None:
+        args["restart_fraction"] = restart_fraction
+    return solve_polonsky_keer(operator, heights, monitor=monitor, **args)
 
 
 def _check_friction(layer, friction, sliding_direction, nu, method, kernel, periodic) -> None:

@@ -146,11 +146,29 @@ def test_tiny_end_to_end_run_and_report(workdir):
         assert float(pull.sel(rms_slope=0.05, work=5e-5)) == pytest.approx(float(pull.sel(rms_slope=0.1, work=2e-4)),
                                                                            rel=1e-4)
         assert float(pull.sel(rms_slope=0.1, work=2e-4)) < float(pull.sel(rms_slope=0.1, work=5e-5)) < 0
+    with xr.open_dataset(results / "viscoelastic_transient.nc") as ds:
+        assert (ds.status == 0).all() and ds.creep_contact_area.dims == ("glassy_ratio", "seed", "time")
+        creep = ds.creep_contact_area.isel(glassy_ratio=0, seed=0)
+        # from the glassy to the relaxed elastic level; relaxation at fixed penetration ends at the load
+        assert float(creep.isel(time=0)) == float(ds.glassy_contact_area.isel(glassy_ratio=0, seed=0))
+        assert float(creep.isel(time=-1)) == pytest.approx(float(ds.relaxed_contact_area.isel(glassy_ratio=0, seed=0)),
+                                                           rel=0.05)
+        relaxed = ds.relaxation_mean_pressure.isel(time=-1) / ds.step_mean_pressure
+        assert float(abs(relaxed - 1).max()) < 1e-3
+    with xr.open_dataset(results / "reciprocating.nc") as ds:
+        assert (ds.status == 0).all() and ds.loop_friction.dims == ("frequency", "seed", "phase")
+        energy = ds.dissipated_energy_per_cycle.isel(seed=0)
+        assert float(energy.sel(frequency=1e-2)) > float(energy.sel(frequency=1e-3))
+        balance = (ds.friction_work_per_cycle / ds.dissipated_energy_per_cycle - 1).where(ds.settled == 1)
+        assert float(abs(balance).max()) < 0.1 and int(ds.settled.sum()) >= 2  # 6 % at 32 steps per cycle
+        for name in list(ds.data_vars) + list(ds.coords):
+            assert ds[name].attrs.get("units") and ds[name].attrs.get("long_name"), name
     table = (results / "speed_vs_error_table.md").read_text()
     assert "| 1.00% | wavy_2d |" in table and "Convergence orders" in table
     for study in ("validation", "area_load", "anisotropy", "speed_vs_error", "fig5_friction_area",
                   "fig6a_interlocking", "fig2_viscoelastic_map", "fig3_anisotropy_polar", "fig6b_viscoelastic_layer",
-                  "friction_speed", "two_scale", "fig4_adhesive_layers", "adhesive_rough"):
+                  "friction_speed", "two_scale", "fig4_adhesive_layers", "adhesive_rough", "viscoelastic_transient",
+                  "reciprocating"):
         assert (results / "figures" / f"{study}.png").stat().st_size > 10_000
     assert not list(results.glob(".*.tmp"))
     report = snakemake(workdir, "--configfile", "tiny.yaml", "--report", "results/report.html", timeout=300)

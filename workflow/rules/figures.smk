@@ -232,3 +232,35 @@ rule plot_adhesive_rough:
         "../envs/contactlib.yaml"
     script:
         "../scripts/plot_adhesive_rough.py"
+
+
+rule plot_viscoelastic_transient:
+    input:
+        data="results/viscoelastic_transient.nc",
+    output:
+        report(
+            "results/figures/viscoelastic_transient.png",
+            caption="../report/viscoelastic_transient.rst",
+            category="Viscoelastic time stepping",
+        ),
+    log:
+        "logs/plot/viscoelastic_transient.log",
+    conda:
+        "../envs/contactlib.yaml"
+    script:
+        "../scripts/plot_viscoelastic_transient.py"
+rule plot_reciprocating:
+    input:
+        data="results/reciprocating.nc",
+    output:
+        report(
+            "results/figures/reciprocating.png",
+            caption="../report/reciprocating.rst",
+            category="Viscoelastic time stepping",
+        ),
+    log:
+        "logs/plot/reciprocating.log",
+    conda:
+        "../envs/contactlib.yaml"
+    script:
+        "../scripts/plot_reciprocating.py"
