@@ -12,6 +12,9 @@ branch up to 1.3 a_c needs lambda >= 5, and a process zone of >= 3 elements then
 a 0.32 window (padded 896^2): not a CI-sized grid.
 
     python benchmarks/bench_adhesion_sphere.py --cases 2:128:0.45 3:192:0.45 5:448:0.32
+
+The lambda = 2 case takes seconds; on the shared 2-core machine the lambda = 3 case did not finish its
+first (cold) state in 3 minutes, and lambda = 5 was not run (benchmarks/RESULTS.md).
 """
 
 from __future__ import annotations
