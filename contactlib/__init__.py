@@ -1,7 +1,8 @@
 """contactlib: rough-surface contact mechanics with FFT boundary elements.
 
 The public API: :func:`solve` for normal contact on a half-space or :class:`Layer` of an
-:class:`Elastic` or :class:`Viscoelastic` material, with Coulomb friction and steady sliding;
+:class:`Elastic` or :class:`Viscoelastic` material, with Coulomb friction and steady sliding, or with
+:class:`Adhesion` (and :func:`adhesion_curve` for loading-unloading paths);
 :mod:`contactlib.surfaces` to generate surfaces or read measured ones (``surfaces.read``);
 :mod:`contactlib.analysis` to measure them and their contact fields; :mod:`contactlib.accuracy` for
 the measured grid and tolerance rules (``solve(..., target_error=...)``); :mod:`contactlib.two_scale`
@@ -11,11 +12,14 @@ their interaction, then local FFT solves).
 
 from . import accuracy, analysis, reference, surfaces, two_scale
 from ._version import __version__
+from .adhesion import Adhesion
+from .adhesion_curve import adhesion_curve
 from .bodies import Layer
 from .contact import ConvergenceError, solve, solve_tolerances
 from .grid import Grid
 from .materials import Elastic, Viscoelastic
 from .transient import TransientInterrupted, solve_reciprocating, solve_transient
 
-__all__ = ["solve", "solve_transient", "solve_reciprocating", "TransientInterrupted", "Layer", "Elastic", "Viscoelastic", "solve_tolerances", "ConvergenceError", "Grid", "surfaces",
-           "analysis", "reference", "accuracy", "two_scale", "__version__"]
+__all__ = ["solve", "Adhesion", "adhesion_curve", "solve_transient", "solve_reciprocating", "TransientInterrupted",
+           "Layer", "Elastic", "Viscoelastic", "solve_tolerances", "ConvergenceError", "Grid", "surfaces", "analysis",
+           "reference", "accuracy", "two_scale", "__version__"]

@@ -9,7 +9,7 @@ import time
 import numpy as np
 import xarray as xr
 
-from . import accuracy, fft
+from . import accuracy, adhesive_contact, fft
 from .analysis.friction import interlocking_friction
 from ._version import __version__
 from .grid import Grid
@@ -135,6 +135,7 @@ def solve(
     sliding_direction: float | None = None,
     material: Elastic | Viscoelastic | None = None,
     sliding_velocity=None,
+    adhesion=None,
 ) -> xr.Dataset:
     """Normal contact of a rigid rough surface on an elastic or viscoelastic half-space or layer, with
     Coulomb friction and steady sliding.
@@ -170,7 +171,7 @@ def solve(
         :func:`contactlib.surfaces.read` is non-periodic unless its file says otherwise), else periodic.
     tol : float, optional
         Target of the scale-free residual (:func:`contactlib.solvers.contact_residual`); default
-        1e-8, or the rule of ``target_error``.
+        1e-8 (1e-6 with ``adhesion``), or the rule of ``target_error``.
     max_iter : int
         Iteration bound; beyond it :class:`ConvergenceError` is raised with the partial state.
     kernel : {"spectral", "love"}
@@ -207,6 +208,14 @@ def solve(
         Direction [rad, in the x-y plane] in which the rigid surface moves relative to the body;
         a profile slides along ``+x`` (give 0, or pi to slide along ``-x``). Default: the direction
         of ``sliding_velocity``, else 0; a direction that contradicts the velocity is refused.
+    adhesion : contactlib.Adhesion, optional
+        An adhesive interface (:mod:`contactlib.adhesion`): a cohesive law inside the contact solve, or
+        ``"jkr"``, the energy balance (a profile symmetric about its highest point, or a surface of
+        revolution). Frictionless and at rest (``friction`` and a nonzero ``sliding_velocity`` are
+        refused; a viscoelastic body at rest is its relaxed elastic body);
+        ``mean_pressure`` (the applied traction, adhesive part included) and ``penetration`` may then be
+        negative. Adds ``adhesive_pressure`` (the tensile part of ``pressure``) and ``interaction_area``;
+        ``contact_area`` is the repulsive (closed) area (:mod:`contactlib.adhesive_contact`).
 
     Returns
     -------
@@ -234,7 +243,7 @@ def solve(
                    penetration=penetration, periodic=periodic, tol=tol, max_iter=max_iter, kernel=kernel,
                    method=method, length=length, initial_pressure=initial_pressure, target_error=target_error,
                    layer=layer, friction=friction, sliding_direction=sliding_direction,
-                   sliding_velocity=sliding_velocity)
+                   sliding_velocity=sliding_velocity, adhesion=adhesion)
     start = time.perf_counter()
     state = setup.run()
     wall = time.perf_counter() - start
@@ -341,6 +350,7 @@ class _Setup:
     solver_args: dict
     attrs: dict
     method: str
+    adhesion: object = None
 
     @property
     def operator(self):
@@ -348,6 +358,8 @@ class _Setup:
 
     def run(self, monitor=None, verify_below=None) -> ContactState:
         """Solve; ``verify_below``: see :func:`contactlib.solvers.solve_periodic_displacement`."""
+        if self.adhesion is not None:
+            return adhesive_contact.run(self, self.adhesion)
         if self.body.coupling is not None:
             return solve_coupled(self._symmetric, self.body.coupling, self.values, **self.solver_args)
         if self.method == "cg":
@@ -378,6 +390,9 @@ class _Setup:
                                                 "surface at a lower load than a thick one)")
         else:
             ds.attrs["full_contact"] = 0
+        if self.adhesion is not None:
+            adhesive_contact.label(ds, state, self.adhesion, self, length_unit=length_unit,
+                                   pressure_unit=pressure_unit)
         return ds
 
     def _label_friction(self, ds: xr.Dataset, state: ContactState, length_unit: str, pressure_unit: str) -> None:
@@ -409,8 +424,10 @@ class _Setup:
                                                                pressure=pressure_unit))
 
     def check(self, state: ContactState, ds: xr.Dataset) -> None:
-        """Refuse a footprint cut by the window edge; raise :class:`ConvergenceError` if unconverged."""
-        if not self.operator.periodic and _touches_edge(state.pressure):
+        """Refuse a footprint cut by the window edge; raise :class:`ConvergenceError` if unconverged (first,
+        for an adhesive solve: a diverged cohesive iterate can touch the edge, which would hide why)."""
+        touches = not self.operator.periodic and _touches_edge(state.pressure)
+        if touches and (state.converged or self.adhesion is None):
             raise ValueError(
                 "periodic=False: the contact reaches the edge of the window, so the surface outside it would "
                 "carry load too; enlarge the window (or use periodic=True for a periodic surface)"
@@ -495,19 +512,24 @@ def _check_velocity(sliding_velocity, sliding_direction, dim, material, method, 
 
 
 def _setup(heights, *, material, mean_pressure, penetration, periodic, tol, max_iter, kernel, method, length,
-           initial_pressure, target_error, layer, friction, sliding_direction, sliding_velocity) -> _Setup:
+           initial_pressure, target_error, layer, friction, sliding_direction, sliding_velocity,
+           adhesion=None) -> _Setup:
     """Validate every argument of :func:`solve` and build the body's operators."""
     values, grid, dims, coords = grid_of(heights, length)
     E, nu = material.E0, material.nu
     E_star = contact_modulus(E, nu)
-    _check_loads(mean_pressure, penetration)
+    if adhesion is None:
+        _check_loads(mean_pressure, penetration)
+    else:
+        adhesive_contact.check(adhesion, values, spacing=grid.spacing, mean_pressure=mean_pressure, penetration=penetration,
+                               friction=friction, method=method, periodic=periodic)
     if target_error is not None:
         if tol is not None:
             raise ValueError("give tol or target_error, not both")
         tol = accuracy.tolerance_for(target_error)
         if periodic:
             accuracy.check_resolution(values, target_error, length=grid.lengths)
-    tol = 1e-8 if tol is None else tol
+    tol = (1e-8 if adhesion is None else adhesive_contact.DEFAULT_TOL) if tol is None else tol
     _check_tolerance(tol, "tol")
     if int(max_iter) < 1:
         raise ValueError(f"max_iter must be >= 1, got {max_iter!r}")
@@ -518,6 +540,9 @@ def _setup(heights, *, material, mean_pressure, penetration, periodic, tol, max_
     _check_friction(layer, friction, sliding_direction, nu, method, kernel, periodic)
     velocity, sliding_direction = _check_velocity(sliding_velocity, sliding_direction, grid.dim, material, method,
                                                   periodic)
+    if adhesion is not None and velocity is not None and any(v != 0 for v in velocity):
+        raise ValueError(f"sliding_velocity: adhesion is modelled at rest (a steady sliding adhesive contact is not "
+                         f"supported), got sliding_velocity={sliding_velocity!r} with adhesion")
     warm = None
     if method == "cg" and initial_pressure is not None:
         warm = np.asarray(initial_pressure, dtype=float)
@@ -542,7 +567,7 @@ def _setup(heights, *, material, mean_pressure, penetration, periodic, tol, max_
         attrs["target_error"] = float(target_error)
     solver_args = {"mean_pressure": mean_pressure, "penetration": penetration, "tol": tol,
                    "max_iter": int(max_iter), "initial_pressure": warm}
-    return _Setup(values, grid, dims, coords, body, solver_args, attrs, method)
+    return _Setup(values, grid, dims, coords, body, solver_args, attrs, method, adhesion)
 
 
 def _touches_edge(pressure: np.ndarray) -> bool:

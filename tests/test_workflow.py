@@ -42,6 +42,7 @@ def test_lint_and_dry_runs(workdir):
         assert "run_study" in dry.stdout and "plot_area_load" in dry.stdout
         assert "plot_speed_vs_error" in dry.stdout and "tabulate_speed_vs_error" in dry.stdout
         assert "plot_fig5_friction_area" in dry.stdout and "plot_fig6a_interlocking" in dry.stdout
+        assert "plot_fig4_adhesive_layers" in dry.stdout and "plot_adhesive_rough" in dry.stdout
 
 
 @pytest.mark.parametrize("path, value, message", [
@@ -126,6 +127,25 @@ def test_tiny_end_to_end_run_and_report(workdir):
         for name in list(ds.data_vars) + list(ds.coords):
             assert ds[name].attrs.get("units") and ds[name].attrs.get("long_name"), name
         assert float(ds.two_scale_asperity_force_error.max()) < 1e-2 and (ds.macro_time > 0).all()
+    with xr.open_dataset(results / "fig4_adhesive_layers.nc") as ds:
+        assert (ds.status == 0).all() and ds.scaled_penetration.attrs["long_name"] == "penetration Delta / Lambda"
+        one = ds.isel(scaled_penetration=0, branch=0)
+        # the paper's trends: a thin confined layer pulls off harder; a thin remote-pressure layer holds no
+        # partial contact under a compressive load (jumps to full contact), a thick one does
+        pull = one.scaled_load_pull_off_pressure.sel(layer_base="confined")
+        assert float(pull.sel(scaled_layer_thickness=1.0)) < float(pull.sel(scaled_layer_thickness=8.0)) < 0
+        jump = one.jump_to_full_contact.sel(layer_base="remote_pressure")
+        assert int(jump.sel(scaled_layer_thickness=1.0)) == 1 and int(jump.sel(scaled_layer_thickness=8.0)) == 0
+    with xr.open_dataset(results / "adhesive_rough.nc") as ds:
+        assert dict(ds.sizes) == {"rms_slope": 2, "work": 2, "seed": 1, "penetration_over_rms": 3, "branch": 2}
+        assert (ds.status == 0).all() and (ds.converged == 1).all()
+        for name in list(ds.data_vars) + list(ds.coords):
+            assert ds[name].attrs.get("units") and ds[name].attrs.get("long_name"), name
+        pull = ds.reduced_pull_off_pressure.isel(penetration_over_rms=0, branch=0, seed=0)
+        # heights x 2, w x 4 (the range follows sqrt(w)) is the same scene in units of E* g: the same pull-off
+        assert float(pull.sel(rms_slope=0.05, work=5e-5)) == pytest.approx(float(pull.sel(rms_slope=0.1, work=2e-4)),
+                                                                           rel=1e-4)
+        assert float(pull.sel(rms_slope=0.1, work=2e-4)) < float(pull.sel(rms_slope=0.1, work=5e-5)) < 0
     with xr.open_dataset(results / "viscoelastic_transient.nc") as ds:
         assert (ds.status == 0).all() and ds.creep_contact_area.dims == ("glassy_ratio", "seed", "time")
         creep = ds.creep_contact_area.isel(glassy_ratio=0, seed=0)
@@ -147,7 +167,8 @@ def test_tiny_end_to_end_run_and_report(workdir):
     assert "| 1.00% | wavy_2d |" in table and "Convergence orders" in table
     for study in ("validation", "area_load", "anisotropy", "speed_vs_error", "fig5_friction_area",
                   "fig6a_interlocking", "fig2_viscoelastic_map", "fig3_anisotropy_polar", "fig6b_viscoelastic_layer",
-                  "friction_speed", "two_scale", "viscoelastic_transient", "reciprocating"):
+                  "friction_speed", "two_scale", "fig4_adhesive_layers", "adhesive_rough", "viscoelastic_transient",
+                  "reciprocating"):
         assert (results / "figures" / f"{study}.png").stat().st_size > 10_000
     assert not list(results.glob(".*.tmp"))
     report = snakemake(workdir, "--configfile", "tiny.yaml", "--report", "results/report.html", timeout=300)

@@ -200,6 +200,40 @@ rule plot_two_scale:
         "../envs/contactlib.yaml"
     script:
         "../scripts/plot_two_scale.py"
+rule plot_fig4_adhesive_layers:
+    input:
+        data="results/fig4_adhesive_layers.nc",
+    output:
+        report(
+            "results/figures/fig4_adhesive_layers.png",
+            caption="../report/fig4_adhesive_layers.rst",
+            category="Adhesion on thin layers",
+        ),
+    log:
+        "logs/plot/fig4_adhesive_layers.log",
+    conda:
+        "../envs/contactlib.yaml"
+    script:
+        "../scripts/plot_fig4_adhesive_layers.py"
+
+
+rule plot_adhesive_rough:
+    input:
+        data="results/adhesive_rough.nc",
+    output:
+        report(
+            "results/figures/adhesive_rough.png",
+            caption="../report/adhesive_rough.rst",
+            category="Adhesion on rough surfaces",
+        ),
+    log:
+        "logs/plot/adhesive_rough.log",
+    conda:
+        "../envs/contactlib.yaml"
+    script:
+        "../scripts/plot_adhesive_rough.py"
+
+
 rule plot_viscoelastic_transient:
     input:
         data="results/viscoelastic_transient.nc",

@@ -1,0 +1,254 @@
+"""Loading-unloading paths of adhesive contact: :func:`adhesion_curve`.
+
+A path is a sequence of approaches (or of mean pressures) taken up, then back down. Each state is
+solved from the previous one (a warm start), so the solve follows the branch it is on; where that
+branch ends the state jumps, and the jump is recorded:
+
+* cohesive laws: the warm-started Newton solve lands on whatever equilibrium is nearest. A jump is a
+  step where the closed (repulsive) area appears or vanishes, or full contact is reached or left. A step
+  whose solve fails is retried from the non-adhesive state and from the open one; if those fail too, the step is kept with ``converged = 0`` and NaN scalars and
+  the path goes on (it never raises). Under load control, beyond the pull-off there is no
+  equilibrium: those steps are NaN, ``converged = 0``, and ``attrs['detached']`` says from where.
+* ``"jkr"`` (the energy method): the state is the domain reached from the previous domain by moving its
+  edge (:meth:`contactlib.solvers.energy.EnergyFamily.descend`): it grows where the approach exceeds the
+  tensile Griffith root of ``G = w`` and shrinks below the previous one's, so it leaves a domain exactly
+  where its local minimum of ``F_m(d)`` disappears, and never descends into smaller, interpenetrating
+  domains after a large step.
+
+Reported (Clarifications, "Adhesion"): ``pull_off_pressure``, the most tensile mean pressure along the
+path (under penetration control, the pull-off force of load control); ``pull_off_penetration``, the
+approach of the last state before the jump out of contact on unloading; ``jump_in_penetration``, the
+approach of the first closed state on loading; ``full_contact_penetration``; and
+``hysteresis_energy``, the loop integral of the mean pressure over the approach (trapezoids, so jumps
+are resolved only to the step).
+"""
+
+from __future__ import annotations
+
+import math
+import time
+
+import numpy as np
+import xarray as xr
+
+from . import adhesive_contact
+from .adhesion import Adhesion
+from .contact import _setup, periodic_of
+from .labels import attrs_for
+from .materials import material_of
+
+
+def adhesion_curve(
+    heights,
+    *,
+    E: float | None = None,
+    nu: float | None = None,
+    adhesion: Adhesion,
+    penetrations=None,
+    mean_pressures=None,
+    layer=None,
+    periodic: bool | None = None,
+    tol: float | None = None,
+    kernel: str = "spectral",
+    length=None,
+    length_unit: str = "m",
+    pressure_unit: str = "Pa",
+    material=None,
+) -> xr.Dataset:
+    """Adhesive contact along a loading-unloading path.
+
+    Parameters
+    ----------
+    heights : xarray.DataArray or ndarray
+        Rigid surface heights [length] as for :func:`contactlib.solve` (an ndarray needs ``length``).
+    E, nu : float
+        Young's modulus [pressure] and Poisson ratio: the shorthand for ``material=contactlib.Elastic(E, nu)``.
+    material : contactlib.Elastic or contactlib.Viscoelastic, optional
+        The body's material instead of ``E, nu``; a viscoelastic body is taken relaxed (``E0``): the path is
+        quasi-static.
+    adhesion : contactlib.Adhesion
+        The interface.
+    penetrations : sequence of float
+        Displacement control: the loading approaches [length], increasing; the path goes through them
+        and back (unloading) in reverse order.
+    mean_pressures : sequence of float
+        Load control instead: the loading mean pressures [pressure], increasing, then back.
+    layer, periodic, tol, kernel, length, length_unit, pressure_unit
+        As for :func:`contactlib.solve`.
+
+    Returns
+    -------
+    xarray.Dataset
+        Along dimension ``step``: ``penetration``, ``mean_pressure``, ``contact_area``,
+        ``interaction_area``, ``unloading``, ``jump``, ``converged``; scalars ``pull_off_pressure``,
+        ``pull_off_penetration``, ``jump_in_penetration``, ``full_contact_penetration`` and
+        ``full_contact_pressure`` (the first fully closed state on loading),
+        ``hysteresis_energy``.
+    """
+    if (penetrations is None) == (mean_pressures is None):
+        raise ValueError("give exactly one of penetrations or mean_pressures")
+    load_control = mean_pressures is not None
+    values = np.asarray(mean_pressures if load_control else penetrations, dtype=float).ravel()
+    name = "mean_pressures" if load_control else "penetrations"
+    if values.size < 2 or not np.all(np.isfinite(values)) or np.any(np.diff(values) <= 0):
+        raise ValueError(f"{name} must hold at least 2 finite, strictly increasing values")
+    path = np.concatenate([values, values[::-1][1:]])
+    unloading = np.concatenate([np.zeros(values.size), np.ones(values.size - 1)]).astype(int)
+    periodic = periodic_of(heights, periodic)
+    first = {"mean_pressure": float(path[0])} if load_control else {"penetration": float(path[0])}
+    setup = _setup(heights, material=material_of(material, E, nu), periodic=periodic, tol=tol, max_iter=10_000,
+                   kernel=kernel, method="cg", length=length, initial_pressure=None, target_error=None, layer=layer,
+                   friction=0.0, sliding_direction=None, sliding_velocity=None, adhesion=adhesion,
+                   **({"mean_pressure": None, "penetration": None} | first))
+    start = time.perf_counter()
+    if adhesion.model == "jkr":
+        rows = _energy_path(setup, adhesion, path, load_control)
+    else:
+        rows = _cohesive_path(setup, adhesion, path, load_control)
+    wall = time.perf_counter() - start
+    return _label(setup, adhesion, rows, unloading, load_control, wall, length_unit, pressure_unit)
+
+
+def _cohesive_path(setup, adhesion, path, load_control):
+    rows, warm, warm_d, area_before = [], None, None, 0.0
+    for value in path:
+        args = dict(setup.solver_args, mean_pressure=None, penetration=None)
+        args["mean_pressure" if load_control else "penetration"] = float(value)
+        state = None
+        # warm start, then the non-adhesive state, then the open one (a jump lands on either)
+        for attempt in (warm, None, np.zeros_like(setup.values)):
+            setup.solver_args = dict(args, initial_pressure=attempt)
+            try:
+                candidate = adhesive_contact.run(setup, adhesion, warm_penetration=warm_d if attempt is not None
+                                                 else None)
+            except (ValueError, np.linalg.LinAlgError, FloatingPointError):
+                continue
+            if candidate.converged:
+                state = candidate
+                break
+        if state is None:
+            rows.append(_failed_row(value, load_control))
+            continue
+        area = float(np.count_nonzero(state.in_contact)) / state.in_contact.size
+        jump = _jumped(area, area_before, state.in_contact.size)
+        rows.append({"penetration": state.penetration, "mean_pressure": state.mean_pressure, "contact_area": area,
+                     "interaction_area": float(np.count_nonzero(adhesion.interacting(state.gap)))
+                     / state.gap.size, "jump": int(jump and bool(rows)), "converged": 1})
+        warm, warm_d, area_before = state.pressure, state.penetration, area
+    return rows
+
+
+def _full(area: float, size: int) -> bool:
+    """Full contact: every element closed but at most one (the energy method's largest domain leaves out
+    the last element, which a periodic half-space closes only at ``d = mean(max h - h)``)."""
+    return area >= 1.0 - 1.5 / size
+
+
+def _jumped(area: float, before: float, size: int) -> bool:
+    """Whether the closed area appeared, vanished, reached or left full contact between two steps."""
+    return (area > 0) != (before > 0) or _full(area, size) != _full(before, size)
+
+
+def _failed_row(value, load_control):
+    row = {"penetration": math.nan, "mean_pressure": math.nan, "contact_area": math.nan,
+           "interaction_area": math.nan, "jump": 1, "converged": 0}
+    row["mean_pressure" if load_control else "penetration"] = float(value)
+    return row
+
+
+def _energy_path(setup, adhesion, path, load_control):
+    fam = adhesive_contact.family(setup)
+    w = adhesion.work
+    rows, m = [], -1
+    _, d_eq, P_eq = fam.equilibrium_curve(w)
+    largest = fam.a.size  # the index of the closed window (one past the largest partial domain)
+    fam_definite = setup.operator.definite
+    for value in path:
+        if load_control:
+            m_new, d = _load_step(P_eq, d_eq, m, float(value))
+            # no stable partial contact carries a compressive load: the contact jumps to full (a thin
+            # remote-pressure layer has no stable partial contact at all)
+            full = m_new is None and (value > 0 or (m == largest and value >= 0))
+            if full and not fam_definite:
+                # the closed window: its penetration is the mean of max h - h, its load whatever is applied
+                rows.append({"penetration": float(np.mean(fam.h0)), "mean_pressure": float(value),
+                             "contact_area": 1.0, "interaction_area": 1.0, "converged": 1,
+                             "jump": int(m != largest)})
+                m = largest
+                continue
+            if m_new is None:
+                rows.append(_failed_row(value, True))
+                m = -1
+                continue
+        else:
+            d = float(value)
+            m_new = fam.descend(m if m < largest else largest - 1, d, w)
+        state = adhesive_contact.energy_state(setup, fam, m_new, d, "")
+        area = float(np.count_nonzero(state.in_contact)) / state.in_contact.size
+        before = 0.0 if m < 0 else 1.0 if m >= fam.ends.size else float(fam.ends[m]) / fam.size
+        jump = _jumped(area, before, fam.size)
+        rows.append({"penetration": d, "mean_pressure": state.mean_pressure, "contact_area": area,
+                     "interaction_area": area, "converged": int(state.converged), "jump": int(bool(rows) and jump)})
+        m = m_new
+    return rows
+
+
+def _load_step(P_eq, d_eq, m, load):
+    """The stable equilibrium domain (``dP/dm > 0``) carrying ``load`` nearest to domain ``m``."""
+    ok = np.isfinite(P_eq[:-1]) & np.isfinite(P_eq[1:]) & (np.diff(P_eq) > 0)
+    brackets = np.flatnonzero(ok & (np.minimum(P_eq[:-1], P_eq[1:]) <= load) & (np.maximum(P_eq[:-1], P_eq[1:])
+                                                                               >= load))
+    if brackets.size == 0:
+        return None, None
+    k = int(brackets[np.argmin(np.abs(brackets - max(m, 0)))])
+    return k, float(d_eq[k])
+
+
+def _label(setup, adhesion, rows, unloading, load_control, wall, length_unit, pressure_unit) -> xr.Dataset:
+    def a(name):
+        return attrs_for(name, length=length_unit, pressure=pressure_unit)
+
+    step = np.arange(len(rows))
+    data = {}
+    for key in ("penetration", "mean_pressure", "contact_area", "interaction_area", "jump"):
+        data[key] = ("step", np.array([r[key] for r in rows], dtype=float if key != "jump" else int), a(key))
+    data["converged"] = ("step", np.array([r["converged"] for r in rows]),
+                         {"units": "1", "long_name": "1 where the state's solve met its tolerance"})
+    data["unloading"] = ("step", unloading, a("unloading"))
+    ds = xr.Dataset(data, coords={"step": ("step", step, a("step"))})
+    d, P, area = ds["penetration"].values, ds["mean_pressure"].values, ds["contact_area"].values
+    ok = np.isfinite(P) & np.isfinite(d)
+    pull_off = float(np.min(P[ok])) if ok.any() else math.nan
+    # the jump out of contact on unloading: the last closed state before an open one
+    pull_off_d = math.nan
+    solved = [k for k in range(step.size) if ok[k] and unloading[k]]
+    for before, after in zip(solved, solved[1:]):  # failed steps are skipped, not taken for a jump
+        if area[before] > 0 and area[after] == 0:
+            pull_off_d = float(d[before])
+            break
+    jump_in = math.nan
+    for k in range(step.size):
+        if not unloading[k] and ok[k] and area[k] > 0:
+            jump_in = float(d[k])
+            break
+    full, full_p = math.nan, math.nan
+    for k in range(step.size):
+        if not unloading[k] and ok[k] and _full(area[k], setup.values.size):
+            full, full_p = float(d[k]), float(P[k])
+            break
+    keep = ok
+    loop = float(np.sum(0.5 * (P[keep][1:] + P[keep][:-1]) * np.diff(d[keep]))) if keep.sum() > 1 else math.nan
+    ds["pull_off_pressure"] = ((), pull_off, a("pull_off_pressure"))
+    ds["pull_off_penetration"] = ((), pull_off_d, a("pull_off_penetration"))
+    ds["jump_in_penetration"] = ((), jump_in, a("jump_in_penetration"))
+    ds["full_contact_penetration"] = ((), full, a("full_contact_penetration"))
+    ds["full_contact_pressure"] = ((), full_p, a("full_contact_pressure"))
+    ds["hysteresis_energy"] = ((), loop, a("hysteresis_energy"))
+    ds.attrs.update({"Conventions": "CF-1.10", "title": "adhesive loading-unloading path",
+                     "load_control": "mean_pressure" if load_control else "penetration", "wall_time": wall,
+                     **{k: v for k, v in setup.attrs.items() if k != "load_control"}, **adhesion.attrs()})
+    if load_control and not ok.all():
+        first = int(np.flatnonzero(~ok)[0])
+        ds.attrs["detached"] = (f"no adhesive equilibrium from step {first} (mean pressure "
+                                f"{ds['mean_pressure'].values[first]:.6g}): pulled off under load control")
+    return ds

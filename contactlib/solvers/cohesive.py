@@ -1,0 +1,278 @@
+"""Cohesive-zone adhesion: the contact conditions with the adhesive traction as a term.
+
+The total traction is ``p = p_r + a(g)``: a repulsive part ``p_r >= 0``, zero where the gap ``g = K p +
+max h - h - d`` is open, and the adhesive traction ``a(g) = -sigma(g) <= 0`` of the cohesive law
+(:class:`contactlib.Adhesion`). The conditions ``p_r >= 0, g >= 0, p_r g = 0`` are the complementarity
+function ``phi = min(p_r, c g) = 0`` (``c`` an element stiffness, so both parts are pressures), solved
+by a semi-smooth Newton (primal-dual active set) method: on the active set ``C = {p_r > c g}`` the row
+is ``g = 0`` (contact), elsewhere ``p = a(g)`` (the law), linearised with ``a'(g)``. Each Newton system
+goes to GMRES with the body's operator (``K``, periodic or zero-padded, half-space or layer) and, on
+the contact rows, the Fourier preconditioner the constrained CG uses (``operator.inverse_multiplier``).
+Load control adds the approach as unknown and ``mean(p) = P``.
+
+The start is the non-adhesive state of the scene from the existing constrained solver (or a warm
+start). The Maugis step is a narrow ramp (:data:`contactlib.adhesion.MAUGIS_RAMP`), so Newton sees its edge move.
+A strong or short-ranged law makes the first Newton steps wild (the active set swings by thousands
+of points on a rough surface); when a solve stalls it is restarted by continuation in the range
+(:data:`RANGES`, from its own start), and if that stalls too, from the non-adhesive state by
+continuation in the work of adhesion (``w / 16`` first, doubled after each converged stage, bisected
+back after a failed one: :func:`_continuation`). A solve that does not meet ``tol`` comes back ``converged=False``.
+
+The residual is scale-free, as the non-adhesive solvers': the mean ``|phi| / c`` over the rms height,
+the largest interpenetration and the load error over ``sigma_0 + |P|``.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from collections.abc import Callable
+
+import numpy as np
+
+from .state import ContactState, height_scale
+
+MAX_NEWTON = 60
+"""Default bound on the Newton iterations of one solve (one range)."""
+
+RANGES = (8.0, 4.0, 2.0, 1.0)
+"""Range multipliers of the first continuation a stalled solve restarts with (from its own start)."""
+
+FIRST_FRACTION = 1.0 / 16
+"""The fraction of the work of adhesion a stalled solve's continuation starts from."""
+
+STAGES = 16
+"""Bound on the Newton solves of that continuation."""
+
+C_SCALE = 1.0
+"""The complementarity constant ``c`` in units of an element's stiffness ``pi E* / (2 dx)`` (0.1-10 gave
+the same iteration counts on the Maugis sphere)."""
+
+BACKTRACK = 6
+"""Halvings of a Newton step that would multiply the residual by more than :data:`GROWTH`."""
+
+GROWTH = 2.0
+
+NEAR = 1e-4
+"""Backtracking acts only below this residual: far from the answer the first Newton steps must be free
+to move the contact a long way (a cold start at small range failed with it on)."""
+
+STALL = 12
+"""Newton iterations without halving the best residual that count as a stall."""
+
+
+def solve_cohesive(
+    operator,
+    heights: np.ndarray,
+    *,
+    adhesion,
+    mean_pressure: float | None = None,
+    penetration: float | None = None,
+    tol: float = 1e-8,
+    max_iter: int = MAX_NEWTON,
+    initial_pressure: np.ndarray | None = None,
+    initial_penetration: float | None = None,
+    solve_repulsive: Callable[..., ContactState] | None = None,
+) -> tuple[ContactState, np.ndarray]:
+    """Adhesive contact of a rigid surface with a cohesive law.
+
+    Parameters
+    ----------
+    operator : Compliance
+        The body's normal compliance.
+    heights : ndarray
+        Rigid surface heights [length]; higher points touch first.
+    adhesion : contactlib.Adhesion
+        A cohesive law (``"maugis"`` or ``"exponential"``).
+    mean_pressure, penetration : float
+        Exactly one: the applied mean traction [pressure], adhesive part included (may be negative),
+        or the approach from first contact of the highest point [length] (may be negative).
+    tol : float
+        Target of the scale-free residual (module docstring).
+    max_iter : int
+        Bound on the Newton iterations per range.
+    initial_pressure, initial_penetration : optional
+        Warm start: the total traction [pressure] (and, load control, the approach) of a neighbouring
+        state, e.g. the previous point of a path.
+    solve_repulsive : callable, optional
+        ``solve_repulsive(heights, mean_pressure=, penetration=, tol=, max_iter=, initial_pressure=)``: the
+        scene's non-adhesive constrained solver, for a cold start.
+
+    Returns
+    -------
+    (ContactState, ndarray)
+        The state (``pressure`` the total traction; ``iterations`` the Newton steps, ``outer_iterations``
+        the GMRES iterations) and the repulsive part ``p_r`` [pressure].
+    """
+    load_control = mean_pressure is not None
+    p = None if initial_pressure is None else np.array(initial_pressure, dtype=float)
+    delta = initial_penetration if load_control else penetration
+    if p is None:
+        p, delta = _cold_start(operator, heights, adhesion, mean_pressure, penetration, solve_repulsive)
+    if delta is None:
+        delta = 0.0
+    run = _Newton(operator, heights, adhesion, mean_pressure, penetration, tol, max_iter)
+    result = run(p, delta)
+    if not result[-1]:  # stalled: continuation in the range (8, 4, 2, 1 times), warm-started stage to stage
+        p_c, d_c = p, delta
+        for factor in RANGES:
+            law = dataclasses.replace(adhesion, range=adhesion.range * factor)
+            result = _Newton(operator, heights, law, mean_pressure, penetration, tol, max_iter)(p_c, d_c)
+            p_c, d_c = result[0], result[1]
+    if not result[-1]:  # still stalled: continuation in the work of adhesion from the cold start
+        result = _continuation(operator, heights, adhesion, mean_pressure, penetration, tol, max_iter,
+                               *_cold_start(operator, heights, adhesion, mean_pressure, penetration, solve_repulsive))
+    p, delta, g, p_r, iterations, krylov, residual, converged = result
+    displacement = g - (heights.max() - heights) + delta
+    state = ContactState(pressure=p, gap=g, displacement=displacement, penetration=float(delta),
+                         mean_pressure=float(p.mean()), iterations=iterations, residual=float(residual),
+                         converged=bool(converged), solver=f"cohesive-newton ({adhesion.model})",
+                         outer_iterations=krylov)
+    return state, p_r
+
+
+def _continuation(operator, heights, adhesion, mean_pressure, penetration, tol, max_iter, p, delta):
+    """Newton along ``w -> f w``, ``f`` from :data:`FIRST_FRACTION` to 1: doubled after a converged stage,
+    moved halfway back towards the last converged one after a failed stage (at most :data:`STAGES`)."""
+    done, f, result = 0.0, FIRST_FRACTION, None
+    for _ in range(STAGES):
+        law = dataclasses.replace(adhesion, work=adhesion.work * f)
+        trial = _Newton(operator, heights, law, mean_pressure, penetration, tol, max_iter)(p, delta)
+        if trial[-1]:
+            p, delta, done, result = trial[0], trial[1], f, trial
+            if f == 1.0:
+                return trial
+            f = min(1.0, 2.0 * f)
+        else:
+            result = result if result is not None and done == 1.0 else trial
+            f = 0.5 * (done + f)
+    return trial if done < 1.0 else result
+
+
+def _cold_start(operator, heights, adhesion, mean_pressure, penetration, solve_repulsive):
+    """The non-adhesive state at the same approach (or at the load, if compressive): contact first."""
+    if solve_repulsive is None:
+        return np.zeros_like(heights), (penetration if penetration is not None else 0.0)
+    if penetration is not None:
+        state = solve_repulsive(heights, mean_pressure=None, penetration=float(penetration))
+        return state.pressure, penetration
+    load = max(float(mean_pressure), 0.0)
+    if load == 0.0:  # under tension: start from the contact of the adhesive stress itself
+        load = adhesion.peak_stress * 1e-3
+    state = solve_repulsive(heights, mean_pressure=load, penetration=None)
+    return state.pressure, state.penetration
+
+
+class _Newton:
+    """One semi-smooth Newton solve of the cohesive contact at one range."""
+
+    def __init__(self, operator, heights, adhesion, mean_pressure, penetration, tol, max_iter):
+        self.op, self.law, self.tol, self.max_iter = operator, adhesion, tol, int(max_iter)
+        self.shape, self.n = heights.shape, heights.size
+        self.h0 = heights.max() - heights
+        self.load = mean_pressure
+        self.control = mean_pressure is not None
+        self.sigma0 = adhesion.peak_stress
+        # an element's stiffness: the compliance at the shortest wave, 2 / (E* q_max)
+        self.c = C_SCALE * operator.E_star * np.pi / (2 * min(operator.grid.spacing))
+        self.hs = height_scale(heights)
+        self.pscale = self.sigma0 + (abs(mean_pressure) if self.control else 0.0)
+
+    def _evaluate(self, p, delta):
+        g = self.op(p) + self.h0 - delta
+        p_r = p - self.law.traction(g)
+        active = p_r > self.c * g
+        phi = np.where(active, self.c * g, p_r)
+        residual = float(np.mean(np.abs(phi))) / self.c / self.hs
+        residual = max(residual, float(np.max(np.maximum(-g, 0.0))) / self.hs)
+        if self.control:
+            residual = max(residual, abs(float(p.mean()) - self.load) / self.pscale)
+        return g, p_r, active, phi, residual
+
+    def _stiffness(self, field):
+        self.op.load()[...] = field
+        return self.op.convolve(inverse=True).copy()
+
+    def __call__(self, p, delta):
+        n, shape, c = self.n, self.shape, self.c
+        g, p_r, active, phi, residual = self._evaluate(p, delta)
+        best, best_it, krylov, it = residual, 0, 0, 0
+        for it in range(1, self.max_iter + 1):
+            if residual <= self.tol:
+                it -= 1
+                break
+            if it - best_it > STALL:
+                break
+            on = active.astype(float)
+            off = 1.0 - on
+            slope = self.law.traction_slope(g)
+            size = n + (1 if self.control else 0)
+
+            def matvec(v):
+                dp = v[:n].reshape(shape)
+                dg = self.op(dp) - (v[n] if self.control else 0.0)
+                rows = (on * c * dg + off * (dp - slope * dg)).ravel()
+                return np.concatenate([rows, [c * dp.mean()]]) if self.control else rows
+
+            def precondition(v):
+                r = v[:n].reshape(shape)
+                z = (off * r + on * self._stiffness(on * r) / c).ravel()
+                return np.concatenate([z, [v[n] / c]]) if self.control else z
+
+            rhs = -phi.ravel()
+            if self.control:
+                rhs = np.concatenate([rhs, [-c * (float(p.mean()) - self.load)]])
+            step, used = gmres(matvec, precondition, rhs, rtol=min(1e-4, max(0.1 * residual, 1e-10)))
+            krylov += used
+            # near the answer a step that multiplies the residual is cut back (halved up to BACKTRACK times): the
+            # answer an active-set flip at the contact edge can throw a full step far off
+            for halving in range(BACKTRACK + 1):
+                trial_p = p + step[:n].reshape(shape)
+                trial_d = delta + (float(step[n]) if self.control else 0.0)
+                trial = self._evaluate(trial_p, trial_d)
+                if trial[-1] <= GROWTH * residual or residual > NEAR or halving == BACKTRACK:
+                    break
+                step = 0.5 * step
+            p, delta = trial_p, trial_d
+            g, p_r, active, phi, residual = trial
+            if residual < 0.5 * best:
+                best, best_it = residual, it
+        converged = residual <= self.tol
+        return p, delta, g, np.where(active, p_r, 0.0), it, krylov, residual, converged
+
+
+def gmres(matvec, precondition, rhs: np.ndarray, *, rtol: float, restart: int = 40, max_cycles: int = 20
+          ) -> tuple[np.ndarray, int]:
+    """Right-preconditioned restarted GMRES (Saad & Schultz 1986), classical Gram-Schmidt done twice
+    with BLAS: ``(x, iterations)``, ``|rhs - A x| <= rtol |rhs|`` unless the cycles run out."""
+    x = np.zeros_like(rhs)
+    target = rtol * float(np.linalg.norm(rhs))
+    total = 0
+    r = rhs.copy()
+    for _ in range(max_cycles):
+        beta = float(np.linalg.norm(r))
+        if beta <= target or beta == 0.0:
+            break
+        V = np.zeros((restart + 1, rhs.size))
+        Z = np.zeros((restart, rhs.size))
+        H = np.zeros((restart + 1, restart))
+        V[0] = r / beta
+        k = 0
+        for k in range(restart):
+            Z[k] = precondition(V[k])
+            w = matvec(Z[k])
+            for _ in range(2):  # CGS2: one more pass restores orthogonality
+                h = V[: k + 1] @ w
+                w -= h @ V[: k + 1]
+                H[: k + 1, k] += h
+            H[k + 1, k] = float(np.linalg.norm(w))
+            total += 1
+            e1 = np.zeros(k + 2)
+            e1[0] = beta
+            y, *_ = np.linalg.lstsq(H[: k + 2, : k + 1], e1, rcond=None)
+            estimate = float(np.linalg.norm(H[: k + 2, : k + 1] @ y - e1))
+            if H[k + 1, k] <= 1e-14 * beta or estimate <= target:
+                break
+            V[k + 1] = w / H[k + 1, k]
+        x += y @ Z[: k + 1]
+        r = rhs - matvec(x)
+    return x, total

@@ -1,0 +1,350 @@
+"""Adhesive contact against closed forms: Johnson's (1995) wavy profile by both routes, the
+Maugis-Dugdale sphere, the JKR limit, loading-unloading paths, thin layers, and bad input."""
+
+import math
+import warnings
+
+import numpy as np
+import pytest
+import xarray as xr
+
+import contactlib
+from contactlib import Adhesion
+from contactlib.adhesion import CohesiveZoneWarning
+from contactlib.reference import adhesive as ref
+from contactlib.reference import westergaard
+
+# Johnson's wavy profile: wavelength 1, amplitude 0.01, E* = 1, alpha = 0.3
+AMPLITUDE, ALPHA = 0.01, 0.3
+WORK = ALPHA**2 * np.pi**2 * AMPLITUDE**2 / 2
+P_STAR = np.pi * AMPLITUDE
+
+
+def cohesive_law(model, zone):
+    """A law whose process zone pi E* w / (4 sigma_0^2) is ``zone`` long (E* = 1)."""
+    sigma0 = math.sqrt(math.pi * WORK / (4 * zone))
+    return Adhesion(work=WORK, range=WORK / sigma0, model=model)
+
+
+def test_energy_method_matches_johnson_and_westergaard():
+    """The energy balance (eqs 9-11): mean pressure against contact half-width within 1 % of p*, and
+    Westergaard's sin^2 without adhesion."""
+    from contactlib.adhesive_contact import family
+    from contactlib.contact import _setup
+
+    h = contactlib.surfaces.wavy(2048, amplitude=AMPLITUDE)
+    setup = _setup(h, material=contactlib.Elastic(1.0, 0.0), mean_pressure=None, penetration=0.0, periodic=True,
+                   tol=None, max_iter=10, kernel="spectral", method="cg", length=None, initial_pressure=None,
+                   target_error=None, layer=None,
+                   friction=0.0, sliding_direction=None, sliding_velocity=None,
+                   adhesion=Adhesion(work=WORK, model="jkr"))
+    fam = family(setup)
+    m = np.arange(fam.a.size - 1)
+    a = (m + 1) * fam.spacing  # G between domains m and m + 1 acts at this half-width
+    band = (a > 0.05) & (a < 0.4)
+    for work in (WORK, 0.0):
+        d = fam.equilibrium_penetration(work)
+        P = fam.mean_pressure(m, d)
+        expected = ref.johnson_wavy_pressure(a, amplitude=AMPLITUDE, wavelength=1.0, E_star=1.0, work=work)
+        err = np.abs(P - expected)[band] / P_STAR
+        assert err.max() < 0.01, (work, err.max())
+    # and the closed form itself is Westergaard's partial contact at w = 0
+    w0 = westergaard.mean_pressure(0.4, amplitude=AMPLITUDE, wavelength=1.0, E_star=1.0)  # contact fraction 2a
+    assert ref.johnson_wavy_pressure(0.2, amplitude=AMPLITUDE, wavelength=1.0, E_star=1.0, work=0.0) == \
+        pytest.approx(w0, rel=1e-12)
+
+
+@pytest.mark.parametrize("model", ["exponential", "maugis"])
+def test_cohesive_small_range_matches_johnson(model):
+    """The cohesive route, range small (process zone 0.2 % of the wavelength, 16 elements): within 1 % of p*."""
+    h = contactlib.surfaces.wavy(8192, amplitude=AMPLITUDE)
+    law = cohesive_law(model, 0.002)
+    ds = None
+    for d in (0.4, 0.0):  # a warm-started path, as adhesion_curve runs it
+        ds = contactlib.solve(h, E=1.0, nu=0.0, penetration=d * AMPLITUDE, adhesion=law,
+                              initial_pressure=None if ds is None else ds.pressure.values)
+        half_width = float(ds.contact_area) / 2
+        expected = ref.johnson_wavy_pressure(half_width, amplitude=AMPLITUDE, wavelength=1.0, E_star=1.0, work=WORK)
+        assert abs(float(ds.mean_pressure) - expected) / P_STAR < 0.01
+        assert float(ds.mean_pressure) == pytest.approx(float(ds.pressure.mean()), rel=1e-12)
+    assert ds.attrs["converged"] == 1 and ds.attrs["process_zone_elements"] > 3
+
+
+def test_jkr_sphere_energy_method():
+    """The energy balance on discs about the apex of a non-periodic sphere (the range-free JKR limit):
+    pull-off -3/2 pi w R within 3 %, and load against contact radius within 3 % of it on the branch
+    stable under load control (a > a_c) up to 1.3 a_c, penetration within 3 % of a_c^2 / R."""
+    from contactlib.adhesive_contact import family
+    from contactlib.contact import _setup
+
+    R, w = 1.0, 2.83e-4  # a_c = 0.1 = 26 elements
+    h = contactlib.surfaces.paraboloid(128, length=0.5, radius=R)
+    setup = _setup(h, material=contactlib.Elastic(1.0, 0.0), mean_pressure=None, penetration=0.0, periodic=False,
+                   tol=None, max_iter=10, kernel="spectral", method="cg", length=None, initial_pressure=None,
+                   target_error=None, layer=None, friction=0.0, sliding_direction=None, sliding_velocity=None,
+                   adhesion=Adhesion(work=w, model="jkr"))
+    fam = family(setup, max_radius=0.14)
+    area, d, mean = fam.equilibrium_curve(w)
+    load = mean * 0.5 * 0.5
+    radius = np.sqrt(area / np.pi)
+    scale = abs(ref.jkr_pull_off(radius=R, work=w))
+    assert np.nanmin(load) == pytest.approx(ref.jkr_pull_off(radius=R, work=w), rel=0.03)
+    a_c = ref.jkr_pull_off_radius(radius=R, E_star=1.0, work=w)
+    stable = (radius > a_c) & (radius < 1.3 * a_c)
+    assert stable.sum() > 5
+    err = np.abs(load - ref.jkr_load(radius, radius=R, E_star=1.0, work=w))[stable] / scale
+    assert err.max() < 0.03, err.max()
+    err_d = np.abs(d - ref.jkr_penetration(radius, radius=R, E_star=1.0, work=w))[stable] / (a_c**2 / R)
+    assert err_d.max() < 0.03, err_d.max()
+
+
+def test_jkr_sphere_cohesive_route():
+    """The cohesive route on the non-periodic JKR sphere (Maugis-Dugdale, lambda = 2, process zone 4.7
+    elements, a_c = 28 elements), warm-started down from +|d_c| under penetration control: the pull-off
+    (the most tensile load, Clarifications) within 3 % of -3/2 pi w R (measured 2.0 %; Maugis' own at this
+    lambda is 2.3 % beyond JKR); the load against the repulsive contact radius within 1 % of |P_c| of Maugis'
+    closed form at every state (measured 0.34 %), and within 3 % of JKR's near a_c (0.95-1.05 a_c; measured
+    0.7 and 1.2 %). Farther out the finite range shows, as Maugis' theory says (+13 % at 1.3 a_c for lambda
+    = 2, +2.3 % for lambda = 5): the JKR limit within 3 % up to 1.3 a_c needs lambda >= 5 and n ~ 450
+    (benchmarks/bench_adhesion_sphere.py), beyond a CI-sized grid."""
+    R, w, L, n, lam = 1.0, 2.83e-4, 0.45, 128, 2.0
+    K = 4 / 3
+    sigma0 = lam / 2 * (np.pi * w * K**2 / R) ** (1 / 3)
+    law = Adhesion(work=w, range=w / sigma0, model="maugis")
+    h = contactlib.surfaces.paraboloid(n, length=L, radius=R)
+    a_c = ref.jkr_pull_off_radius(radius=R, E_star=1.0, work=w)
+    d_c = abs(ref.jkr_penetration(a_c, radius=R, E_star=1.0, work=w))
+    scale = abs(ref.jkr_pull_off(radius=R, work=w))
+    ds, loads, near = None, [], 0
+    for step in (1.0, 0.5, 0.0, -0.5, -0.75, -1.0):  # steps of |d_c| / 2 (one of |d_c| stalls the Newton solve)
+        ds = contactlib.solve(h, E=1.0, nu=0.0, penetration=step * d_c, adhesion=law, periodic=False,
+                              initial_pressure=None if ds is None else ds.pressure.values)
+        assert ds.attrs["converged"] == 1 and ds.attrs["process_zone_elements"] > 3
+        load = float(ds.mean_pressure) * L * L
+        a = math.sqrt(float(ds.contact_area) * L * L / math.pi)
+        md = float(ref.maugis_load(a, radius=R, E_star=1.0, work=w, peak_stress=sigma0)[0])
+        assert abs(load - md) / scale < 0.01, (step, load, md)
+        if 0.95 * a_c <= a <= 1.05 * a_c:
+            near += 1
+            assert abs(load - ref.jkr_load(a, radius=R, E_star=1.0, work=w)) / scale < 0.03
+        loads.append(load)
+    assert near == 2
+    assert min(loads) == pytest.approx(ref.jkr_pull_off(radius=R, work=w), rel=0.03)
+    assert min(loads) / (np.pi * w * R) == pytest.approx(ref.maugis_pull_off(lam), rel=0.01)
+
+
+def test_maugis_dugdale_sphere_lambda_one():
+    """Non-periodic sphere at lambda = 1: load against approach within 3 % of Maugis' equations."""
+    R, w, L, n = 1.0, 2.83e-4, 0.45, 128
+    K = 4 / 3
+    lam = 1.0
+    sigma0 = lam / 2 * (np.pi * w * K**2 / R) ** (1 / 3)
+    law = Adhesion(work=w, range=w / sigma0, model="maugis")
+    h = contactlib.surfaces.paraboloid(n, length=L, radius=R)
+    A = np.linspace(0.8, 2.5, 3401)  # the stable branch under displacement control: D grows with A
+    P_ref, D_ref = ref.maugis_load_penetration(A, lam)
+    assert np.all(np.diff(D_ref) > 0)
+    ds = None
+    for d in (0.004, 0.0, -0.004):
+        ds = contactlib.solve(h, E=1.0, nu=0.0, penetration=d, adhesion=law, periodic=False,
+                              initial_pressure=None if ds is None else ds.pressure.values)
+        load = float(ds.mean_pressure) * L * L / (np.pi * w * R)
+        D = d * (K**2 / (np.pi**2 * w**2 * R)) ** (1 / 3)
+        expected = np.interp(D, D_ref, P_ref)
+        assert load == pytest.approx(expected, rel=0.03), (d, load, expected)
+    assert ds.attrs["maugis_parameter"] == pytest.approx(1.0, rel=0.02)
+    assert float(ds.interaction_area) > float(ds.contact_area) > 0
+
+
+def test_adhesion_curve_wavy_both_routes():
+    """Loading-unloading under penetration control: jump-in, pull-off (the most tensile mean pressure,
+    Johnson's minimum within 1 % of p*), hysteresis; the two routes agree."""
+    h = contactlib.surfaces.wavy(1024, amplitude=AMPLITUDE)
+    a = np.linspace(0.01, 0.3, 3000)
+    p_min = ref.johnson_wavy_pressure(a, amplitude=AMPLITUDE, wavelength=1.0, E_star=1.0, work=WORK).min()
+    path = np.linspace(-0.5, 0.6, 45) * AMPLITUDE
+    out = {}
+    for model in ("jkr", "exponential"):
+        law = Adhesion(work=WORK, model="jkr") if model == "jkr" else cohesive_law(model, 0.004)
+        ds = contactlib.adhesion_curve(h, E=1.0, nu=0.0, adhesion=law, penetrations=path)
+        assert ds.sizes["step"] == 2 * path.size - 1 and int(ds.unloading.sum()) == path.size - 1
+        assert float(ds.pull_off_pressure) == pytest.approx(float(ds.mean_pressure.min()))
+        assert abs(float(ds.pull_off_pressure) - p_min) / P_STAR < 0.01
+        assert float(ds.pull_off_penetration) < 0 and float(ds.hysteresis_energy) > 0
+        assert math.isfinite(float(ds.jump_in_penetration)) and int(ds.jump.sum()) >= 2
+        for name in ds.variables:
+            assert "units" in ds[name].attrs and "long_name" in ds[name].attrs, name
+        out[model] = ds
+    # jkr jumps in at touching (d = 0); the cohesive law pulls the surfaces together from a distance
+    assert float(out["exponential"].jump_in_penetration) <= float(out["jkr"].jump_in_penetration) + 1e-12
+
+
+def test_adhesion_curve_load_control_detaches():
+    """Under load control the path stops at pull-off: NaN states, converged 0, reported; no exception."""
+    h = contactlib.surfaces.wavy(512, amplitude=AMPLITUDE)
+    loads = np.linspace(-0.2, 0.3, 11) * P_STAR
+    ds = contactlib.adhesion_curve(h, E=1.0, nu=0.0, adhesion=Adhesion(work=WORK, model="jkr"), mean_pressures=loads)
+    assert int(ds.converged.sum()) < ds.sizes["step"] and "detached" in ds.attrs
+    ok = ds.converged.values == 1
+    assert np.all(ds.mean_pressure.values[ok] >= ref.johnson_wavy_pressure(
+        np.linspace(0.005, 0.45, 2000), amplitude=AMPLITUDE, wavelength=1.0, E_star=1.0, work=WORK).min() - 1e-12)
+
+
+def _pull_off(layer, path):
+    q0 = 2 * np.pi
+    h = contactlib.surfaces.wavy(256, amplitude=2 / q0)
+    law = Adhesion(work=0.05 * np.pi / q0, model="jkr")
+    return contactlib.adhesion_curve(h, E=1.0, nu=0.3, adhesion=law, penetrations=path * 2 / q0, layer=layer)
+
+
+def test_thin_layers_pull_off_trends():
+    """Seed Figure 4 (q0 Lambda = 2, (1 - nu^2) q0 w / (pi E) = 0.05 with E* = E / (1 - nu^2)): the
+    confined layer's pull-off grows as it thins, the remote-pressure layer's falls and its pull-off
+    penetration moves further out."""
+    q0 = 2 * np.pi
+    path = np.linspace(-0.8, 0.6, 71)
+    confined = [float(_pull_off(contactlib.Layer(t / q0, "confined"), path).pull_off_pressure) for t in (8, 2, 1, 0.5)]
+    assert np.all(np.diff(confined) < 0), confined  # more tensile as h falls
+    half = float(_pull_off(None, path).pull_off_pressure)
+    assert confined[0] == pytest.approx(half, rel=0.02)  # thick: the half-space
+    remote = [_pull_off(contactlib.Layer(t / q0, "remote_pressure"), path) for t in (8, 2)]
+    assert float(remote[1].pull_off_pressure) > float(remote[0].pull_off_pressure)
+    assert float(remote[1].pull_off_penetration) < float(remote[0].pull_off_penetration)
+
+
+def test_remote_layer_jumps_to_full_contact_below_threshold():
+    """Under load control a thin remote-pressure layer has no stable partial contact: it jumps to full
+    contact at the first compressive load; a thick one only near full contact."""
+    q0 = 2 * np.pi
+    h = contactlib.surfaces.wavy(256, amplitude=2 / q0)
+    law = Adhesion(work=0.05 * np.pi / q0, model="jkr")
+    loads = np.linspace(0.01, 1.0, 34)
+    jump = {}
+    for t in (0.5, 8):
+        ds = contactlib.adhesion_curve(h, E=1.0, nu=0.3, adhesion=law, mean_pressures=loads,
+                                       layer=contactlib.Layer(t / q0, "remote_pressure"))
+        jump[t] = float(ds.full_contact_pressure)
+    assert jump[0.5] == pytest.approx(loads[0])
+    assert jump[8] > 10 * loads[0]
+
+
+def test_dataset_labels_and_resolution_warning():
+    h = contactlib.surfaces.wavy(256, amplitude=AMPLITUDE)
+    with pytest.warns(CohesiveZoneWarning, match="process zone"):
+        ds = contactlib.solve(h, E=1.0, nu=0.0, penetration=0.3 * AMPLITUDE, adhesion=cohesive_law("exponential", 0.004))
+    for name in ("pressure", "adhesive_pressure", "contact_area", "interaction_area", "mean_pressure"):
+        assert ds[name].attrs["units"] and ds[name].attrs["long_name"]
+    assert float(ds.adhesive_pressure.min()) < 0 and float(ds.adhesive_pressure.max()) == 0
+    assert ds.attrs["adhesion_model"] == "exponential" and ds.attrs["process_zone_elements"] < 3
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        contactlib.solve(h, E=1.0, nu=0.0, penetration=0.3 * AMPLITUDE, adhesion=Adhesion(work=WORK, model="jkr"))
+    # the non-adhesive call is unchanged
+    plain = contactlib.solve(h, E=1.0, nu=0.0, penetration=0.3 * AMPLITUDE)
+    assert "adhesive_pressure" not in plain and "adhesion_model" not in plain.attrs
+
+
+@pytest.mark.parametrize("kwargs, word", [
+    ({"work": -1.0, "range": 1.0}, "work"),
+    ({"work": math.nan, "range": 1.0}, "work"),
+    ({"work": 1.0, "range": 0.0}, "range"),
+    ({"work": 1.0, "range": -1.0}, "range"),
+    ({"work": 1.0}, "range"),
+    ({"work": 1.0, "range": 1.0, "model": "lennard-jones"}, "model"),
+])
+def test_bad_adhesion_named(kwargs, word):
+    with pytest.raises(ValueError, match=word):
+        Adhesion(**kwargs)
+
+
+def test_bad_scene_named():
+    h2 = contactlib.surfaces.wavy(16, amplitude=0.01, dim=2)
+    with pytest.raises(ValueError, match="jkr"):
+        contactlib.solve(h2, E=1.0, nu=0.0, penetration=0.001, adhesion=Adhesion(work=1e-4, model="jkr"))
+    x = np.arange(32) / 32 - 0.5
+    pyramid = -(np.abs(x)[:, None] + np.abs(x)[None, :]) * 0.01  # symmetric, but no surface of revolution
+    with pytest.raises(ValueError, match="revolution"):
+        contactlib.solve(pyramid, E=1.0, nu=0.0, penetration=0.001, periodic=False,
+                         adhesion=Adhesion(work=1e-4, model="jkr"))
+    h = contactlib.surfaces.wavy(64, amplitude=0.01)
+    asym = h + 0.001 * np.sin(2 * np.pi * h.x)
+    with pytest.raises(ValueError, match="symmetric"):
+        contactlib.solve(asym, E=1.0, nu=0.0, penetration=0.001, adhesion=Adhesion(work=1e-4, model="jkr"))
+    with pytest.raises(ValueError, match="friction"):
+        contactlib.solve(h, E=1.0, nu=0.0, penetration=0.001, friction=0.3, adhesion=Adhesion(work=1e-4, range=1e-3))
+    with pytest.raises(ValueError, match="adhesion"):
+        contactlib.solve(h, E=1.0, nu=0.0, penetration=0.001, adhesion={"work": 1e-4})
+    with pytest.raises(ValueError, match="penetrations"):
+        contactlib.adhesion_curve(h, E=1.0, nu=0.0, adhesion=Adhesion(work=1e-4, model="jkr"), penetrations=[0.1, 0.0])
+    assert isinstance(Adhesion(work=1.0, model="jkr"), Adhesion)  # range optional for jkr
+
+
+def test_adhesion_with_materials_and_sliding():
+    """A viscoelastic body at rest is its relaxed elastic body (same answer as ``E=E0``); steady
+    sliding with adhesion is refused, naming ``sliding_velocity``."""
+    h = contactlib.surfaces.wavy(256, amplitude=AMPLITUDE)
+    law = Adhesion(work=WORK, model="jkr")
+    material = contactlib.Viscoelastic.standard_linear_solid(E0=1.0, E_inf=10.0, tau=1.0, nu=0.0)
+    relaxed = contactlib.solve(h, material=material, penetration=0.3 * AMPLITUDE, adhesion=law)
+    elastic = contactlib.solve(h, E=1.0, nu=0.0, penetration=0.3 * AMPLITUDE, adhesion=law)
+    assert float(relaxed.mean_pressure) == pytest.approx(float(elastic.mean_pressure), rel=1e-12)
+    curve = contactlib.adhesion_curve(h, material=contactlib.Elastic(1.0, 0.0), adhesion=law,
+                                      penetrations=[0.0, 0.3 * AMPLITUDE])
+    assert float(curve.mean_pressure[1]) == pytest.approx(float(elastic.mean_pressure), rel=1e-9)
+    with pytest.raises(ValueError, match="sliding_velocity"):
+        contactlib.solve(h, material=material, penetration=0.3 * AMPLITUDE, sliding_velocity=1.0, adhesion=law)
+    with pytest.raises(ValueError, match="sliding_velocity"):
+        contactlib.solve(h, E=1.0, nu=0.0, penetration=0.3 * AMPLITUDE, sliding_velocity=1.0, adhesion=law)
+
+
+def test_nonconvergence_is_reported():
+    """A cohesive solve that cannot converge (one Newton step per stage, a tolerance below round-off)
+    raises with its residual and the partial state."""
+    h = contactlib.surfaces.wavy(2048, amplitude=AMPLITUDE)
+    import contactlib.solvers.cohesive as cohesive
+
+    saved = cohesive.MAX_NEWTON
+    try:
+        import contactlib.adhesive_contact as glue
+
+        glue_saved = glue.MAX_NEWTON
+        glue.MAX_NEWTON = 1
+        with pytest.raises(contactlib.ConvergenceError) as err:
+            contactlib.solve(h, E=1.0, nu=0.0, penetration=0.4 * AMPLITUDE, adhesion=cohesive_law("maugis", 0.004),
+                             tol=1e-15)
+        assert err.value.residual > 1e-15 and err.value.dataset.attrs["converged"] == 0
+    finally:
+        cohesive.MAX_NEWTON = saved
+        glue.MAX_NEWTON = glue_saved
+
+
+def test_energy_path_survives_large_steps_on_a_stiff_layer():
+    """A thin incompressible confined layer, one large approach step: the domain grows to the tensile
+    Griffith root instead of descending the free energy into small, interpenetrating domains (it fell to
+    one element, unconverged, before); the same state as the direct solve, and as a path of small steps."""
+    q0 = 2 * np.pi
+    h = contactlib.surfaces.wavy(256, amplitude=2 / q0)
+    law = Adhesion(work=0.05 * np.pi / (0.75 * q0), model="jkr")
+    layer = contactlib.Layer(0.5 / q0, "confined")
+    coarse = contactlib.adhesion_curve(h, E=1.0, nu=0.5, adhesion=law, layer=layer, penetrations=[0.0, 0.9 * 2 / q0])
+    fine = contactlib.adhesion_curve(h, E=1.0, nu=0.5, adhesion=law, layer=layer,
+                                     penetrations=np.linspace(0.0, 0.9, 10) * 2 / q0)
+    direct = contactlib.solve(h, E=1.0, nu=0.5, adhesion=law, layer=layer, penetration=0.9 * 2 / q0)
+    assert int(coarse.converged[1]) == 1 and float(coarse.contact_area[1]) > 0.5
+    assert float(coarse.contact_area[1]) == float(fine.contact_area[9]) == float(direct.contact_area)
+    assert float(coarse.mean_pressure[1]) == pytest.approx(float(direct.mean_pressure), rel=1e-12)
+
+
+def test_fig4_load_control_pull_off():
+    """The study's load-control pull-off: the most tensile state whose pressure grows with the approach;
+    NaN where the path holds none."""
+    from contactlib.studies.fig4_adhesive_layers import load_control_pull_off
+
+    d = np.array([-0.2, -0.1, 0.0, 0.1, 0.2, 0.1, 0.0, -0.1, -0.2])
+    p = np.array([0.0, 0.0, -0.3, 0.5, 0.9, 0.5, -0.3, -0.4, 0.0])
+    area = np.array([0.0, 0.0, 0.2, 0.4, 0.5, 0.4, 0.2, 0.1, 0.0])
+    jump = np.array([0, 0, 1, 0, 0, 0, 0, 0, 1])
+    assert load_control_pull_off(d, p, area, jump) == (-0.4, -0.1, 0)
+    falling = np.array([0.0, 0.0, -0.3, -0.5, -0.6, -0.5, -0.3, -0.2, 0.0])  # more tensile as it closes: never held
+    pull, at, full = load_control_pull_off(d, falling, area, jump)
+    assert math.isnan(pull) and math.isnan(at) and full == 1
