@@ -510,15 +510,7 @@ def _prepare(heights, *, times, material, mean_pressure, penetration, path, laye
     if isinstance(max_iter, bool) or not isinstance(max_iter, (int, np.integer)) or max_iter < 1:
         raise ValueError(f"max_iter must be an integer >= 1, got {max_iter!r}")
     _check_friction(layer, 0.0, 0.0, material.nu, "cg", "spectral", periodic)
-    times = np.asarray(times, dtype=float)
-    if times.ndim != 1 or times.size < 1:
-        raise ValueError(f"times must be a 1D sequence of at least one time, got shape {times.shape}")
-    if not np.all(np.isfinite(times)):
-        raise ValueError("times must be finite")
-    if np.any(np.diff(times) <= 0):
-        k = int(np.argmax(np.diff(times) <= 0))
-        raise ValueError(f"times must increase strictly (every dt > 0): times[{k + 1}] = {times[k + 1]!r} after "
-                         f"times[{k}] = {times[k]!r}")
+    times = _times(times)
     if (mean_pressure is None) == (penetration is None):
         raise ValueError("give exactly one of mean_pressure or penetration")
     control = "mean_pressure" if mean_pressure is not None else "penetration"
@@ -528,6 +520,20 @@ def _prepare(heights, *, times, material, mean_pressure, penetration, path, laye
     positions = _positions(path, times, grid.dim)
     stepper = _Stepper(values, grid, dims, material, layer, periodic, float(tol), int(max_iter), control)
     return stepper, times, loads, positions, control
+
+
+def _times(times) -> np.ndarray:
+    """The instants as a finite, strictly increasing 1D array."""
+    times = np.asarray(times, dtype=float)
+    if times.ndim != 1 or times.size < 1:
+        raise ValueError(f"times must be a 1D sequence of at least one time, got shape {times.shape}")
+    if not np.all(np.isfinite(times)):
+        raise ValueError("times must be finite")
+    if np.any(np.diff(times) <= 0):
+        k = int(np.argmax(np.diff(times) <= 0))
+        raise ValueError(f"times must increase strictly (every dt > 0): times[{k + 1}] = {times[k + 1]!r} after "
+                         f"times[{k}] = {times[k]!r}")
+    return times
 
 
 def _history(load, times: np.ndarray, name: str) -> np.ndarray:

@@ -1,11 +1,9 @@
 """The two-scale asperity method (seed paper 1): macro-scale forces per asperity with their elastic
 interaction, then micro-scale local FFT solves, for fields of separate spherical asperities.
 
-Elastic half-space only. The viscoelastic extension (the seed's eq. 4: the same two scales inside a
-time step with the pressure rate constant over the step) waits for contactlib's transient
-viscoelastic time stepping; :func:`contactlib.two_scale.macro.solve_macro` and
-:func:`contactlib.two_scale.micro.solve_micro` take the approach, the load and the compliance as
-plain arguments so that a time-stepping caller can call them once per step.
+:func:`solve` is the elastic half-space; :func:`solve_transient` the viscoelastic extension (the seed's
+last paragraph), the same two scales inside each step of :func:`contactlib.solve_transient`'s time
+stepping (:mod:`.transient`).
 """
 
 from __future__ import annotations
@@ -27,10 +25,12 @@ from .fields import random_asperity_field
 from .interaction import PointInteraction
 from .macro import HertzLaw, MacroState, solve_macro
 from .micro import MicroState, hertz_pressure_field, solve_micro, window_size
+from .transient import solve_transient
 
 SCALES = ("macro", "two-scale")
 
-__all__ = ["solve", "asperity_table", "asperity_forces", "random_asperity_field", "AsperityTable", "PointInteraction", "HertzLaw", "solve_macro", "solve_micro",
+__all__ = ["solve", "solve_transient", "asperity_table", "asperity_forces", "random_asperity_field", "AsperityTable",
+           "PointInteraction", "HertzLaw", "solve_macro", "solve_micro",
            "MacroState", "MicroState", "SCALES"]
 
 
@@ -45,6 +45,20 @@ def _material(material, E, nu) -> tuple[float, float]:
     if E is None or nu is None:
         raise ValueError("material: give material=contactlib.Elastic(E, nu) or both E= and nu=")
     return E, nu
+
+
+def _table_with_grid(asperities, *, length, periodic, n, scale: str) -> AsperityTable:
+    """The validated table, with the caps built on an ``n x n`` grid when a Dataset feeds the two-scale
+    method (or ``n`` is given)."""
+    table = asperity_table(asperities, length=length, periodic=periodic)
+    if table.grid is None and (scale == "two-scale" or n is not None):
+        if n is None:
+            raise ValueError("n: the two-scale method needs a grid; give n= (points per side) with a Dataset")
+        built = surfaces.spheres(int(n), length=table.length, radius=table.radius, summit_height=table.summit_height,
+                                 centers=table.centers)
+        table = AsperityTable(table.centers, table.radius, table.summit_height, table.length, table.periodic,
+                              np.asarray(built.values, dtype=float), asperity_table(built).grid)
+    return table
 
 
 def solve(
@@ -149,14 +163,7 @@ def solve(
             raise ValueError(f"{name} must be finite and > 0, got {value!r}")
     if int(max_iter) < 1:
         raise ValueError(f"max_iter must be >= 1, got {max_iter!r}")
-    table = asperity_table(asperities, length=length, periodic=periodic)
-    if table.grid is None and (scale == "two-scale" or n is not None):
-        if n is None:
-            raise ValueError("n: the two-scale method needs a grid; give n= (points per side) with a Dataset")
-        built = surfaces.spheres(int(n), length=table.length, radius=table.radius, summit_height=table.summit_height,
-                                 centers=table.centers)
-        table = AsperityTable(table.centers, table.radius, table.summit_height, table.length, table.periodic,
-                              np.asarray(built.values, dtype=float), asperity_table(built).grid)
+    table = _table_with_grid(asperities, length=length, periodic=periodic, n=n, scale=scale)
     z_top = float(table.heights.max()) if table.heights is not None else float(table.summit_height.max())
     total_force = None if mean_pressure is None else float(mean_pressure) * table.length**2
 

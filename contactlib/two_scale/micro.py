@@ -135,12 +135,19 @@ def window_size(table: AsperityTable, *, grid: Grid, contact_radius: np.ndarray)
 
 def solve_micro(table: AsperityTable, macro: MacroState, law: HertzLaw, E_star: float, interaction: PointInteraction, *,
                 z_top: float, total_force: float | None, tol: float, max_iter: int,
-                known_displacement: np.ndarray | None = None, local_max_iter: int = 10_000) -> MicroState:
+                known_displacement: np.ndarray | None = None, known_force: np.ndarray | None = None,
+                initial_pressure: np.ndarray | None = None, local_max_iter: int = 10_000) -> MicroState:
     """Refine the macro forces into the pressure field (see the module docstring).
 
     ``known_displacement`` [length], on the grid, is a displacement of the body that does not depend on
     the pressure sought (a time-stepping caller's history term, as in :func:`.solve_macro`): it enters
-    every local problem and the gap; the returned ``displacement`` excludes it.
+    every local problem and the gap; the returned ``displacement`` excludes it. ``known_force`` [force],
+    per asperity, is the force of the pressure that causes it where that pressure and the one sought
+    make one Hertz contact together (a viscoelastic step's history pressure ``g``: ``p + g`` is the
+    Hertz-shaped field): the coarse correction then takes each contact's stiffness from ``P_k + G_k``,
+    which only speeds the iteration up (its fixed point does not depend on it). ``initial_pressure``
+    [pressure], on the grid, replaces Hertz's pressure of the macro forces as the first sweep's (a time
+    stepper's previous step: a warm start, same fixed point).
 
     Raises
     ------
@@ -154,7 +161,8 @@ def solve_micro(table: AsperityTable, macro: MacroState, law: HertzLaw, E_star: 
         try:
             return _solve_in_windows(table, macro, law, E_star, interaction, window, z_top=z_top,
                                      total_force=total_force, tol=tol, max_iter=max_iter,
-                                     known_displacement=known_displacement, local_max_iter=local_max_iter)
+                                     known_displacement=known_displacement, known_force=known_force,
+                                     initial_pressure=initial_pressure, local_max_iter=local_max_iter)
         except _WindowTooSmall:  # a contact grew past the macro step's estimate: larger windows
             if window >= table.grid.shape[0]:
                 raise ValueError("mean_pressure/penetration: a local contact fills its whole window") from None
@@ -168,6 +176,7 @@ class _WindowTooSmall(Exception):
 def _solve_in_windows(table: AsperityTable, macro: MacroState, law: HertzLaw, E_star: float,
                       interaction: PointInteraction, window: int, *, z_top: float, total_force: float | None,
                       tol: float, max_iter: int, known_displacement: np.ndarray | None,
+                      known_force: np.ndarray | None, initial_pressure: np.ndarray | None,
                       local_max_iter: int) -> MicroState:
     """:func:`solve_micro` with windows of ``window`` nodes per side."""
     grid, heights = table.grid, table.heights
@@ -185,7 +194,8 @@ def _solve_in_windows(table: AsperityTable, macro: MacroState, law: HertzLaw, E_
     footprint = table.footprint_radius
     windows = [_window(table, grid, k, window) for k in range(table.count)]
     masks = [(dx[:, None] ** 2 + dy[None, :] ** 2) < footprint[k] ** 2 for k, (_, _, dx, dy) in enumerate(windows)]
-    pressure = hertz_pressure_field(table, grid, macro.force, radius, window)
+    pressure = hertz_pressure_field(table, grid, macro.force, radius, window) if initial_pressure is None else \
+        np.array(initial_pressure, dtype=float)
     delta = macro.penetration
     local_tol = LOCAL_TOL_FACTOR * tol
     change, it, local_iterations = np.inf, 0, 0
@@ -218,7 +228,7 @@ def _solve_in_windows(table: AsperityTable, macro: MacroState, law: HertzLaw, E_
             patches[k] = p_local
             solved[k] = state.displacement  # = K_w p_local: the pressure is zero off the footprint
             new_force[k] = float(p_local.sum()) * dA
-        scale, step = _coarse_correction(interaction, law, E_star, old_force, new_force, total_force)
+        scale, step = _coarse_correction(interaction, law, E_star, old_force, new_force, total_force, known_force)
         delta += step
         new = np.zeros_like(pressure)
         own_displacement = {}
@@ -254,10 +264,12 @@ def _solve_in_windows(table: AsperityTable, macro: MacroState, law: HertzLaw, E_
 
 
 def _coarse_correction(interaction: PointInteraction, law: HertzLaw, E_star: float, old_force: np.ndarray,
-                       new_force: np.ndarray, total_force: float | None) -> tuple[np.ndarray, float]:
+                       new_force: np.ndarray, total_force: float | None,
+                       known_force: np.ndarray | None = None) -> tuple[np.ndarray, float]:
     """Scale factors of the new asperity pressures and the approach step from the macro model (step 4)."""
     # Hertz stiffness of each new contact, dF/dd = 2 E* a with a = (3 F R / (4 E*))^(1/3)
-    slope = 2.0 * E_star * np.cbrt(3.0 * new_force * law.radius / (4.0 * E_star))
+    hertz_force = new_force if known_force is None else np.where(new_force > 0, new_force + known_force, 0.0)
+    slope = 2.0 * E_star * np.cbrt(3.0 * np.maximum(hertz_force, 0.0) * law.radius / (4.0 * E_star))
     rhs = -interaction(new_force - old_force)
     correction = solve_contact_compliance(interaction, slope, rhs)
     step = 0.0
