@@ -9,7 +9,8 @@ approach of :mod:`contactlib.studies.two_scale`) on a standard linear solid (``E
 
 * **reference**: ``contactlib.solve_transient(..., tol=--ref-tol)`` (1e-8), fields kept, forces summed over
   each footprint;
-* **full**: ``contactlib.solve_transient(..., tol=--full-tol)`` (1e-4), timed;
+* **full**: ``contactlib.solve_transient(..., tol=--full-tol)`` (1e-4), timed (fields kept at every step for
+  its error: three array copies a step);
 * **two-scale**: ``contactlib.two_scale.solve_transient(..., tol=--two-scale-tol)`` (1e-3), timed;
 * **macro**: ``scale="macro"``, timed.
 
