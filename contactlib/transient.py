@@ -334,6 +334,7 @@ class _Stepper:
         self.axes = ("x", "y")[: grid.dim]
         self.history = PronyHistory(material, grid.shape)
         self.spectrum = np.fft.rfftn(values)
+        self.wavevectors = grid.wavevectors()  # for the phase of a path's translation
         self._models: dict[float, tuple] = {}
         self._at_rest = None  # the heights and slopes at the origin
         self.pressure = self.previous = None
@@ -364,15 +365,15 @@ class _Stepper:
         """The rigid surface ``h(x - X)`` and its slopes along each axis."""
         if position is None or not np.any(position):
             if self._at_rest is None:
-                self._at_rest = self.values, [directional_slope(self.values, lengths=self.grid.lengths,
-                                                                direction=a * math.pi / 2, periodic=self.periodic)
-                                              for a in range(self.grid.dim)]
+                self._at_rest = self.values, self._slopes(self.values)
             return self._at_rest
-        phase = np.exp(-1j * sum(q * float(x) for q, x in zip(self.grid.wavevectors(), position)))
+        phase = np.exp(-1j * sum(q * float(x) for q, x in zip(self.wavevectors, position)))
         heights = np.fft.irfftn(self.spectrum * phase, s=self.grid.shape, axes=tuple(range(self.grid.dim)))
-        slopes = [directional_slope(heights, lengths=self.grid.lengths, direction=a * math.pi / 2,
-                                    periodic=self.periodic) for a in range(self.grid.dim)]
-        return heights, slopes
+        return heights, self._slopes(heights)
+
+    def _slopes(self, heights) -> list[np.ndarray]:
+        return [directional_slope(heights, lengths=self.grid.lengths, direction=a * math.pi / 2,
+                                  periodic=self.periodic) for a in range(self.grid.dim)]
 
     def first(self, load: float, control: str, position, *, relaxed: bool) -> dict:
         """The first step: the load applied at once (glassy), or carried for ever (relaxed)."""

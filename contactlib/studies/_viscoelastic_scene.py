@@ -21,6 +21,7 @@ SCENE_VARIABLES: dict[str, dict[str, str]] = {
     "dissipated_power": attrs_for("dissipated_power"),
     "outer_iterations": attrs_for("outer_iterations"),
     "viscoelastic_model": {"units": "1", "long_name": "viscoelastic kernel solved (1) or elastic shortcut (0)"},
+    "step_mean_pressure": {"units": "Pa", "long_name": "the applied load (mean pressure)"},
 }
 """Labels of the names the viscoelastic studies share."""
 

@@ -16,7 +16,7 @@ from ._common import rough_surface
 from ._viscoelastic_scene import SCENE_VARIABLES, material, relaxed_contact_modulus
 
 VARIABLES: dict[str, dict[str, str]] = {
-    "glassy_ratio": SCENE_VARIABLES["glassy_ratio"],
+    **{name: SCENE_VARIABLES[name] for name in ("glassy_ratio", "step_mean_pressure")},
     "frequency": {"units": "s-1", "long_name": "reciprocating frequency f"},
     "phase": {"units": "1", "long_name": "fraction of the cycle"},
     "dissipated_energy_per_cycle": {"units": "Pa m", "long_name": "energy dissipated per unit area per cycle"},
@@ -26,7 +26,6 @@ VARIABLES: dict[str, dict[str, str]] = {
     "loop_position": {"units": "1", "long_name": "position over the amplitude X / A"},
     "loop_friction": {"units": "1", "long_name": "friction coefficient along +x over the last cycle"},
     "loop_contact_area": {"units": "1", "long_name": "contact area fraction over the last cycle"},
-    "step_mean_pressure": {"units": "Pa", "long_name": "the applied load (mean pressure)"},
 }
 
 

@@ -20,7 +20,7 @@ from ._common import rough_surface
 from ._viscoelastic_scene import SCENE_VARIABLES, material, relaxed_contact_modulus
 
 VARIABLES: dict[str, dict[str, str]] = {
-    "glassy_ratio": SCENE_VARIABLES["glassy_ratio"],
+    **{name: SCENE_VARIABLES[name] for name in ("glassy_ratio", "step_mean_pressure")},
     "creep_contact_area": {"units": "1", "long_name": "contact area fraction under the step load"},
     "creep_penetration": {"units": "m", "long_name": "penetration under the step load"},
     "relaxation_mean_pressure": {"units": "Pa", "long_name": "mean pressure at the step penetration"},
@@ -29,7 +29,6 @@ VARIABLES: dict[str, dict[str, str]] = {
     "glassy_contact_area": {"units": "1", "long_name": "elastic contact area with E_inf (glassy level)"},
     "relaxed_penetration": {"units": "m", "long_name": "elastic penetration with E0 (relaxed level)"},
     "glassy_penetration": {"units": "m", "long_name": "elastic penetration with E_inf (glassy level)"},
-    "step_mean_pressure": {"units": "Pa", "long_name": "the applied load (mean pressure)"},
     "time": {"units": "s", "long_name": "time since the step"},
 }
 
