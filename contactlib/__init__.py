@@ -18,7 +18,8 @@ from .bodies import Layer
 from .contact import ConvergenceError, solve, solve_tolerances
 from .grid import Grid
 from .materials import Elastic, Viscoelastic
-from .transient import TransientInterrupted, solve_reciprocating, solve_transient
+from .reciprocating import solve_reciprocating
+from .transient import TransientInterrupted, solve_transient
 
 __all__ = ["solve", "Adhesion", "adhesion_curve", "solve_transient", "solve_reciprocating", "TransientInterrupted",
            "Layer", "Elastic", "Viscoelastic", "solve_tolerances", "ConvergenceError", "Grid", "surfaces", "analysis",

@@ -11,7 +11,7 @@ import numpy as np
 import xarray as xr
 
 from .. import analysis
-from ..transient import solve_reciprocating
+from ..reciprocating import solve_reciprocating
 from ._common import rough_surface
 from ._viscoelastic_scene import SCENE_VARIABLES, material, relaxed_contact_modulus
 

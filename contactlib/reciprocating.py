@@ -1,0 +1,187 @@
+"""Reciprocating sliding on a viscoelastic body: :func:`solve_reciprocating` drives the time stepper of
+:mod:`contactlib.transient` cycle by cycle, extrapolates the body's memory to the cycle's fixed point and
+stops when the cycle repeats.
+"""
+
+from __future__ import annotations
+
+import logging
+import math
+import time as _time
+from collections.abc import Callable
+
+import numpy as np
+import xarray as xr
+
+from .bodies import Layer
+from .contact import ConvergenceError, _check_tolerance, grid_of
+from .labels import attrs_for
+from .materials import material_of
+from .transient import TransientInterrupted, _prepare, _Record
+
+log = logging.getLogger(__name__)
+
+
+def solve_reciprocating(
+    heights,
+    *,
+    amplitude: float,
+    frequency: float,
+    mean_pressure: float,
+    material=None,
+    E: float | None = None,
+    nu: float | None = None,
+    direction: float = 0.0,
+    steps_per_cycle: int = 64,
+    max_cycles: int = 20,
+    min_cycles: int = 3,
+    cycle_tol: float = 1e-3,
+    accelerate: bool = True,
+    layer: Layer | None = None,
+    periodic: bool | None = None,
+    tol: float = 1e-8,
+    max_iter: int = 10_000,
+    length=None,
+    progress: Callable | None = None,
+    length_unit: str = "m",
+    pressure_unit: str = "Pa",
+    time_unit: str = "s",
+) -> xr.Dataset:
+    """Reciprocating sliding ``X(t) = amplitude sin(2 pi frequency t)`` along ``direction`` under a constant
+    ``mean_pressure``, run cycle by cycle until the cycle repeats.
+
+    The run starts from the body relaxed under the load at ``X = 0`` (as if pressed for ever, then set
+    moving), so a slow material needs few cycles. **Settled** when, from ``min_cycles`` on, the change
+    between consecutive cycles, and the change still to come estimated from their geometric decrease
+    (``c r / (1 - r)`` with ``r`` the ratio of the last two changes), are both at most ``cycle_tol``. The
+    change is the larger of the tangential-force loop's relative L2 change and the dissipated energy's
+    change relative to the cycle's absolute work ``oint |tau_x dX|``. Past ``max_cycles`` the cycles done
+    are returned with ``attrs['status']`` saying the cycle did not settle and the last change.
+
+    Parameters as :func:`solve_transient`; ``amplitude`` [length] and ``frequency`` [1/time] > 0;
+    ``direction`` [rad] (a profile: 0 or pi).
+
+    Returns
+    -------
+    xarray.Dataset
+        The last cycle on ``time`` (``position_x``, ``tangential_force_x``, ``friction_coefficient_interlocking``,
+        ``contact_area``, ``penetration``, ``dissipated_power``, ...: the hysteresis loop is
+        ``tangential_force_x / mean_pressure`` against ``position_x``), and on ``cycle``:
+        ``dissipated_energy`` (the integral of the dissipated power over the cycle) and ``friction_work``
+        (``oint tau . dX``, the work the motion puts in: equal to it once the cycle repeats) [pressure
+        length], and ``cycle_change``. Scalars ``dissipated_energy_per_cycle`` and
+        ``friction_work_per_cycle`` of the last cycle; ``attrs['status']`` ``"settled"`` or not.
+    """
+    for value, name in ((amplitude, "amplitude"), (frequency, "frequency")):
+        if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value) or value <= 0:
+            raise ValueError(f"{name} must be a finite number > 0, got {value!r}")
+    if isinstance(steps_per_cycle, bool) or not isinstance(steps_per_cycle, int) or steps_per_cycle < 4:
+        raise ValueError(f"steps_per_cycle must be an integer >= 4, got {steps_per_cycle!r}")
+    if not isinstance(max_cycles, int) or not isinstance(min_cycles, int) or not 2 <= min_cycles <= max_cycles:
+        raise ValueError(f"need integers 2 <= min_cycles <= max_cycles, got min_cycles={min_cycles!r}, "
+                         f"max_cycles={max_cycles!r}")
+    _check_tolerance(cycle_tol, "cycle_tol")
+    if not isinstance(direction, (int, float)) or not math.isfinite(direction):
+        raise ValueError(f"direction must be a finite angle [rad], got {direction!r}")
+    dt = 1.0 / (frequency * steps_per_cycle)
+    cycle_times = np.arange(steps_per_cycle + 1) * dt
+    unit = np.array([math.cos(direction), math.sin(direction)])
+
+    material = material_of(material, E, nu)
+    dim = grid_of(heights, length)[1].dim
+
+    def path(t):
+        return amplitude * math.sin(2 * math.pi * frequency * t) * unit[:dim]
+
+    stepper, _, _, positions, control = _prepare(
+        heights, times=cycle_times, material=material, mean_pressure=mean_pressure, penetration=None, path=path,
+        layer=layer, periodic=periodic, tol=tol, max_iter=max_iter, length=length)
+    if stepper.grid.dim == 1 and abs(math.sin(direction)) > 1e-12:
+        raise ValueError(f"direction must be 0 or pi for a profile (it slides along x), got {direction!r}")
+    units = (length_unit, pressure_unit, time_unit)
+    start = _time.perf_counter()
+    last = stepper.first(mean_pressure, control, positions[0], relaxed=True)
+    energies, works, changes, previous_loop = [], [], [], None
+    ends = [stepper.history.state()]  # the memory at the ends of the cycles since the last extrapolation
+    status, record = None, None
+    try:
+        for cycle in range(max_cycles):
+            record = _Record(stepper, cycle_times[1:] + cycle / frequency, positions[1:],
+                             np.arange(steps_per_cycle) == steps_per_cycle - 1, True)
+            before = last
+            for k in range(1, steps_per_cycle + 1):
+                last = stepper.step(dt, mean_pressure, control, positions[k])
+                record.add(k - 1, last)
+                if progress is not None:
+                    progress(cycle * steps_per_cycle + k - 1, max_cycles * steps_per_cycle,
+                             float(record.times[k - 1]), record.row(k - 1))
+            loop = np.stack([np.array(record.columns[f"tangential_force_{a}"]) for a in stepper.axes])
+            moved = np.diff(positions, axis=0)
+            forces = np.concatenate([np.stack([before[f"tangential_force_{a}"] for a in stepper.axes])[:, None], loop],
+                                    axis=1)
+            mid = 0.5 * (forces[:, 1:] + forces[:, :-1])
+            works.append(float(np.sum(mid * moved.T)))
+            energies.append(float(np.sum(record.columns["dissipated_power"]) * dt))
+            scale = float(np.sum(np.abs(mid * moved.T))) or 1.0
+            log.info("solve_reciprocating: cycle %d, energy %.6g, loop work %.6g", cycle + 1, energies[-1], works[-1])
+            if previous_loop is not None:
+                norm = float(np.linalg.norm(loop)) or 1.0
+                changes.append(max(float(np.linalg.norm(loop - previous_loop)) / norm,
+                                   abs(energies[-1] - energies[-2]) / scale))
+                if len(energies) >= min_cycles and _settled(changes, cycle_tol):
+                    status = "settled"
+                    break
+            previous_loop = loop
+            if accelerate:
+                ends.append(stepper.history.state())
+                if len(ends) == 3:
+                    stepper.history.set_state(_extrapolate(*ends))
+                    ends = [stepper.history.state()]
+    except ConvergenceError as err:
+        ds = record.dataset(start, units=units, status=f"not converged in cycle {len(energies) + 1}: {err}")
+        raise ConvergenceError(str(ds.attrs["status"]), residual=err.residual, dataset=ds) from err
+    except KeyboardInterrupt:
+        ds = record.dataset(start, units=units, status=f"interrupted in cycle {len(energies) + 1}")
+        raise TransientInterrupted(ds.attrs["status"], ds) from None
+    if status is None:
+        status = (f"not settled after {max_cycles} cycles: last change between cycles "
+                  f"{changes[-1] if changes else float('nan'):.3g} > cycle_tol {cycle_tol:g}")
+    ds = record.dataset(start, units=units, status=status)
+    length_u, pressure_u, _ = units
+    energy_attrs = attrs_for("dissipated_energy", length=length_u, pressure=pressure_u)
+    ds = ds.assign_coords(cycle=("cycle", np.arange(1, len(energies) + 1), attrs_for("cycle")))
+    ds["dissipated_energy"] = ("cycle", np.array(energies), energy_attrs)
+    ds["friction_work"] = ("cycle", np.array(works), attrs_for("friction_work", length=length_u, pressure=pressure_u))
+    ds["cycle_change"] = ("cycle", np.array([np.nan] + changes), attrs_for("cycle_change"))
+    ds["dissipated_energy_per_cycle"] = ((), energies[-1], energy_attrs)
+    ds["friction_work_per_cycle"] = ((), works[-1], attrs_for("friction_work", length=length_u, pressure=pressure_u))
+    ds.attrs.update(amplitude=float(amplitude), frequency=float(frequency), direction=float(direction),
+                    steps_per_cycle=steps_per_cycle, cycles=len(energies), cycle_tol=float(cycle_tol),
+                    max_cycles=max_cycles, initial="relaxed under the mean load at X = 0")
+    return ds
+
+
+def _extrapolate(first, second, third):
+    """The fixed point of the cycle map from three successive cycle-end states, assuming one slow mode
+    (Aitken's delta-squared on the whole state): ``third + d (r / (1 - r))``, ``d = third - second``, ``r``
+    the ratio of the last two changes; the state unchanged unless ``0 < r < 1``."""
+    d1 = [b - a for a, b in zip(first, second)]
+    d2 = [b - a for a, b in zip(second, third)]
+    norm = sum(float(np.vdot(x, x)) for x in d1)
+    if norm <= 0:
+        return third
+    ratio = sum(float(np.vdot(x, y)) for x, y in zip(d1, d2)) / norm
+    if not 0 < ratio < 0.99:
+        return third
+    return [x + d * (ratio / (1 - ratio)) for x, d in zip(third, d2)]
+
+
+def _settled(changes: list[float], cycle_tol: float) -> bool:
+    """The cycle repeats to ``cycle_tol``: the last change, and the rest of a geometric decrease, below it."""
+    last = changes[-1]
+    if last > cycle_tol:
+        return False
+    if len(changes) < 2 or changes[-2] <= 0:
+        return True
+    ratio = last / changes[-2]
+    return ratio < 1 and last * ratio / (1 - ratio) <= cycle_tol
