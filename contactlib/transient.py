@@ -172,6 +172,7 @@ class _Stepper:
         self.wavevectors = grid.wavevectors()  # for the phase of a path's translation
         self._models: dict[float, tuple] = {}
         self._at_rest = None  # the heights and slopes at the origin
+        self._slope_spectra = None  # periodic: the slopes' spectra, shifted by a phase along a path
         self.pressure = self.previous = None
         # a warm start is near the answer and only a few edge points move: restart the conjugacy when more
         # than 0.1 % of the contact re-enters (the cold-solve rule, 1 %, kept a stale direction there).
@@ -203,8 +204,18 @@ class _Stepper:
                 self._at_rest = self.values, self._slopes(self.values)
             return self._at_rest
         phase = np.exp(-1j * sum(q * float(x) for q, x in zip(self.wavevectors, position)))
-        heights = np.fft.irfftn(self.spectrum * phase, s=self.grid.shape, axes=tuple(range(self.grid.dim)))
-        return heights, self._slopes(heights)
+        axes = tuple(range(self.grid.dim))
+        heights = np.fft.irfftn(self.spectrum * phase, s=self.grid.shape, axes=axes)
+        if not self.periodic:  # differences in real space: the zero-padded window is not periodic
+            return heights, self._slopes(heights)
+        if self._slope_spectra is None:  # i q_a h(q), the Nyquist modes zeroed as directional_slope does
+            self._slope_spectra = []
+            for q, n in zip(self.wavevectors, self.grid.shape):
+                q = q.copy()  # one non-singleton axis: its n // 2 entry is the Nyquist mode
+                if n % 2 == 0:
+                    q.reshape(-1)[n // 2] = 0.0
+                self._slope_spectra.append(1j * q * self.spectrum)
+        return heights, [np.fft.irfftn(s * phase, s=self.grid.shape, axes=axes) for s in self._slope_spectra]
 
     def _slopes(self, heights) -> list[np.ndarray]:
         return [directional_slope(heights, lengths=self.grid.lengths, direction=a * math.pi / 2,

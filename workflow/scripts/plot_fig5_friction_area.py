@@ -9,6 +9,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import xarray as xr  # noqa: E402
+from seed_bands import band  # noqa: E402
 
 sm = snakemake  # noqa: F821
 sys.stderr = open(sm.log[0], "w")
@@ -19,13 +20,6 @@ ratio, a0, p, t = ds.area_ratio, ds.frictionless_contact_area, ds.scaled_pressur
 
 def label(v):
     return f"{v.long_name} [{v.units}]"
-
-
-def band(ax, x, v, **kw):
-    """Mean over seeds, the standard deviation as a band."""
-    mean, std = v.mean("seed"), v.std("seed")
-    (line,) = ax.plot(x, mean, marker="o", ms=3, **kw)
-    ax.fill_between(x, mean - std, mean + std, color=line.get_color(), alpha=0.2, lw=0)
 
 
 thin = ratio.sel(scaled_layer_thickness=panels["scaled_layer_thickness"], method="nearest")

@@ -9,6 +9,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import xarray as xr  # noqa: E402
+from seed_bands import band  # noqa: E402
 
 sm = snakemake  # noqa: F821
 sys.stderr = open(sm.log[0], "w")
@@ -23,10 +24,7 @@ def label(v):
 fig, axes = plt.subplots(1, 2, figsize=(12, 4.5), layout="constrained")
 for ax, v in zip(axes, (ds.interlocking_ratio, ds.contact_area)):
     for nu in ds.nu.values:
-        sel = v.sel(nu=nu)
-        mean, std = sel.mean("seed"), sel.std("seed")
-        (line,) = ax.plot(p, mean, marker="o", ms=3, label=f"nu = {nu:g}")
-        ax.fill_between(p, mean - std, mean + std, color=line.get_color(), alpha=0.2, lw=0)
+        band(ax, p, v.sel(nu=nu), label=f"nu = {nu:g}")
     ax.set(xscale="log", xlabel=label(p), ylabel=label(v))
     ax.legend(fontsize=7)
 axes[0].axhline(0.0, color="k", lw=0.8, ls=":")

@@ -9,6 +9,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import xarray as xr  # noqa: E402
+from seed_bands import band  # noqa: E402
 
 sm = snakemake  # noqa: F821
 sys.stderr = open(sm.log[0], "w")
@@ -16,10 +17,7 @@ ds = xr.open_dataset(sm.input.data).where(lambda d: d.status == 0)
 fig, axes = plt.subplots(1, 2, figsize=(12, 4.5), layout="constrained")
 for ax, v in zip(axes, (ds.interlocking_over_slope, ds.contact_area)):
     for mu in ds.friction.values:
-        sel = v.sel(friction=mu)
-        mean, std = sel.mean("seed"), sel.std("seed")
-        (line,) = ax.plot(ds.zeta, mean, marker="o", ms=3, label=f"mu_c = {mu:g}")
-        ax.fill_between(ds.zeta, mean - std, mean + std, color=line.get_color(), alpha=0.2, lw=0)
+        band(ax, ds.zeta, v.sel(friction=mu), label=f"mu_c = {mu:g}")
     ax.set(xscale="log", xlabel=f"{ds.zeta.long_name} [1]", ylabel=f"{v.long_name} [{v.units}]")
     ax.legend(fontsize=8)
 axes[0].set_title("(b) with coupling mu_a stays > 0 at both ends")

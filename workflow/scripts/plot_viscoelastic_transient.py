@@ -11,6 +11,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 import xarray as xr  # noqa: E402
+from seed_bands import band  # noqa: E402
 
 sm = snakemake  # noqa: F821
 sys.stderr = open(sm.log[0], "w")
@@ -23,10 +24,7 @@ panels = ((axes[0], ds.creep_contact_area, ds.relaxed_contact_area, ds.glassy_co
           (axes[2], ds.relaxation_mean_pressure / ds.step_mean_pressure, None, None))
 for ax, v, relaxed, glassy in panels:
     for ratio in ds.glassy_ratio.values:
-        sel = v.sel(glassy_ratio=ratio).sel(time=t)
-        mean, std = sel.mean("seed"), sel.std("seed")
-        (line,) = ax.plot(t, mean, marker="o", ms=2, label=f"E_inf / E0 = {ratio:g}")
-        ax.fill_between(t, mean - std, mean + std, color=line.get_color(), alpha=0.2, lw=0)
+        line = band(ax, t, v.sel(glassy_ratio=ratio).sel(time=t), ms=2, label=f"E_inf / E0 = {ratio:g}")
         if relaxed is not None:
             for level, style in ((relaxed, "--"), (glassy, ":")):
                 ax.axhline(float(level.sel(glassy_ratio=ratio).mean("seed")), color=line.get_color(), ls=style, lw=1)
