@@ -41,4 +41,6 @@ def viscoelastic_layer_point(*, zeta: float, friction: float, seed: int, n: int,
             "residual": float(out.residual), "_warm_start": out.pressure.values}
 
 
-STUDY = {"point": viscoelastic_layer_point, "fft_shapes": profile_shapes, "path_dim": "zeta"}
+# each speed solved cold: walking the speeds with warm starts cost more (2048 points, 14 speeds: 1.3 s cold
+# against 2.6 s warm at mu_c = 0, 1.8 s against 2.2 s at 0.8)
+STUDY = {"point": viscoelastic_layer_point, "fft_shapes": profile_shapes}

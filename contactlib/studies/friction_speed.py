@@ -1,7 +1,9 @@
 """The ``friction_speed`` study: the hysteretic friction coefficient and the contact area of a 2D rough
 surface sliding on a standard linear solid, against ``zeta = V tau q0`` (the bell-shaped curve), for
 several ``E_inf / E0`` and seeds. The load is fixed as a fraction of the relaxed contact modulus times
-the rms slope; each seed's speeds are walked upwards, each solve warm-started from the last.
+the rms slope. Each speed is solved cold: warm-started from the next slower speed, the solves took more
+iterations, not fewer (128^2, seed 0, zeta 1e-3..0.1: 1.3 s cold against 1.5 s warm at E_inf/E0 = 10,
+3.0 s against 4.1 s at 100; single-threaded, same machine), and cold points spread over the workers.
 """
 
 from __future__ import annotations
@@ -37,5 +39,4 @@ def speed_shapes(grid: dict, constants: dict) -> list[tuple[int, ...]]:
     return [(constants["n"], constants["n"])]
 
 
-STUDY = {"point": friction_speed_point, "fft_shapes": speed_shapes, "path_dim": "zeta",
-         "surface_keys": ("seed",)}
+STUDY = {"point": friction_speed_point, "fft_shapes": speed_shapes, "surface_keys": ("seed",)}
