@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import dataclasses
-import math
 import time
 
 import numpy as np
@@ -12,11 +11,13 @@ import xarray as xr
 from . import accuracy, adhesive_contact, fft
 from .analysis.friction import interlocking_friction
 from ._version import __version__
-from .grid import Grid
-from .labels import attrs_for
+from .labels import attrs_for, to_dataset
 from .analysis.viscoelastic import traction_power
 from .materials import Elastic, Viscoelastic, contact_modulus, material_of
 from .bodies import BodyModel, Layer, body_model
+from .grid import Grid
+from .inputs import check_friction, check_loads, check_tolerance, check_velocity, grid_of, periodic_of, \
+    touches_edge
 from .operators import KERNELS
 from .solvers import ContactState, solve_active_set, solve_coupled, solve_periodic_displacement, solve_polonsky_keer
 
@@ -42,75 +43,6 @@ class ConvergenceError(RuntimeError):
         self.residual = residual
         self.dataset = dataset
         self.datasets = None
-
-
-def grid_of(heights, length=None) -> tuple[np.ndarray, Grid, tuple[str, ...], dict]:
-    """Heights array, grid, dim names and coords of a DataArray or ndarray input."""
-    if isinstance(heights, xr.DataArray):
-        values = np.asarray(heights.values, dtype=float)
-        dims = tuple(heights.dims)
-        if length is None:
-            lengths = []
-            for d in dims:
-                if d not in heights.coords:
-                    raise ValueError(f"heights: dimension {d!r} has no coordinate; pass length=")
-                c = np.asarray(heights[d].values, dtype=float)
-                if c.size < 2:
-                    raise ValueError(f"heights: grid smaller than 2 points along {d!r}")
-                lengths.append(float(c[1] - c[0]) * c.size)
-            lengths = tuple(lengths)
-        else:
-            lengths = _lengths(length, values.ndim)
-        coords = {d: heights[d] for d in dims if d in heights.coords}
-    else:
-        values = np.asarray(heights, dtype=float)
-        if values.ndim not in (1, 2):
-            raise ValueError(f"heights must be 1D or 2D, got {values.ndim} dimensions")
-        dims = ("x", "y")[: values.ndim]
-        lengths = _lengths(1.0 if length is None else length, values.ndim)
-        coords = {}
-    if values.ndim not in (1, 2):
-        raise ValueError(f"heights must be 1D or 2D, got {values.ndim} dimensions")
-    if min(values.shape) < 2:
-        raise ValueError(f"heights: grid smaller than 2 points, shape {values.shape}")
-    if not np.all(np.isfinite(values)):
-        raise ValueError("heights contain NaN or infinite values")
-    grid = Grid(values.shape, lengths)
-    if not coords:
-        coords = {d: (d, c) for d, c in zip(dims, grid.coordinates())}
-    return np.ascontiguousarray(values), grid, dims, coords
-
-
-def periodic_of(heights, periodic: bool | None) -> bool:
-    """``periodic`` if given, else what a DataArray's ``attrs['periodic']`` says (a measured surface from
-    :func:`contactlib.surfaces.read` is non-periodic unless its file or reader said so), else True."""
-    if periodic is not None:
-        return bool(periodic)
-    if isinstance(heights, xr.DataArray) and "periodic" in heights.attrs:
-        return bool(heights.attrs["periodic"])
-    return True
-
-
-def _lengths(length, ndim: int) -> tuple[float, ...]:
-    lengths = tuple(float(v) for v in np.broadcast_to(np.asarray(length, dtype=float), (ndim,)))
-    for v in lengths:
-        if not math.isfinite(v) or v <= 0:
-            raise ValueError(f"length must be finite and > 0, got {length!r}")
-    return lengths
-
-
-def _check_tolerance(value, name: str) -> None:
-    if not (isinstance(value, (int, float)) and math.isfinite(value) and value > 0):
-        raise ValueError(f"{name} must be finite and > 0, got {value!r}")
-
-
-def _check_loads(mean_pressure, penetration) -> None:
-    if (mean_pressure is None) == (penetration is None):
-        raise ValueError("give exactly one of mean_pressure or penetration")
-    if mean_pressure is not None and (not math.isfinite(mean_pressure) or mean_pressure < 0):
-        raise ValueError(f"mean_pressure must be finite and >= 0, got {mean_pressure!r}")
-    if penetration is not None and not math.isfinite(penetration):
-        raise ValueError(f"penetration must be finite, got {penetration!r}")
 
 
 def solve(
@@ -296,7 +228,7 @@ def solve_tolerances(
     if not tols:
         raise ValueError("tols must hold at least one tolerance")
     for t in tols:
-        _check_tolerance(t, "tols")
+        check_tolerance(t, "tols")
     periodic = periodic_of(heights, periodic)
     setup = _setup(heights, material=material_of(None, E, nu), mean_pressure=mean_pressure,
                    penetration=penetration, periodic=periodic, tol=min(tols), max_iter=max_iter, kernel=kernel,
@@ -426,7 +358,7 @@ class _Setup:
     def check(self, state: ContactState, ds: xr.Dataset) -> None:
         """Refuse a footprint cut by the window edge; raise :class:`ConvergenceError` if unconverged (first,
         for an adhesive solve: a diverged cohesive iterate can touch the edge, which would hide why)."""
-        touches = not self.operator.periodic and _touches_edge(state.pressure)
+        touches = not self.operator.periodic and touches_edge(state.pressure)
         if touches and (state.converged or self.adhesion is None):
             raise ValueError(
                 "periodic=False: the contact reaches the edge of the window, so the surface outside it would "
@@ -459,58 +391,6 @@ def constrained_solve(operator, heights, *, monitor=None, verify_below=None, res
     return solve_polonsky_keer(operator, heights, monitor=monitor, **args)
 
 
-def _check_friction(layer, friction, sliding_direction, nu, method, kernel, periodic) -> None:
-    """The scene's body and interface: refused with the parameter named, before anything is built."""
-    sliding_direction = 0.0 if sliding_direction is None else sliding_direction
-    if layer is not None:
-        if not isinstance(layer, Layer):
-            raise ValueError(f"layer must be a contactlib.Layer or None, got {layer!r}")
-        if not 0.0 <= nu <= 0.5:
-            raise ValueError(f"nu (Poisson ratio) must lie in [0, 0.5] for a layer, got {nu!r}")
-        if not periodic:
-            raise ValueError("layer: a layer is modelled on a periodic window only (periodic=True)")
-    if isinstance(friction, bool) or not isinstance(friction, (int, float)) or not math.isfinite(friction) \
-            or friction < 0:
-        raise ValueError(f"friction (Coulomb coefficient) must be a finite number >= 0, got {friction!r}")
-    if isinstance(sliding_direction, bool) or not isinstance(sliding_direction, (int, float)) \
-            or not math.isfinite(sliding_direction):
-        raise ValueError(f"sliding_direction must be a finite angle [rad], got {sliding_direction!r}")
-    if method == "active-set" and (layer is not None or friction > 0):
-        raise ValueError("method='active-set' solves frictionless half-space contact only: use method='cg' "
-                         "with a layer or friction")
-    if kernel == "love" and (layer is not None or friction > 0):
-        raise ValueError("kernel='love' is a half-space, frictionless kernel: use kernel='spectral' with a layer "
-                         "or friction")
-
-
-def _check_velocity(sliding_velocity, sliding_direction, dim, material, method, periodic):
-    """``(velocity, direction)``: the validated velocity (a tuple per axis, or None) and the sliding
-    direction it sets; contradictions and unsupported scenes refused with the parameter named."""
-    if sliding_velocity is None:
-        return None, 0.0 if sliding_direction is None else sliding_direction
-    velocity = np.atleast_1d(np.asarray(sliding_velocity, dtype=float))
-    if velocity.shape != (dim,):
-        raise ValueError(f"sliding_velocity must have {dim} component(s) (one per axis of the heights), "
-                         f"got {sliding_velocity!r}")
-    if not np.all(np.isfinite(velocity)):
-        raise ValueError(f"sliding_velocity must be finite, got {sliding_velocity!r}")
-    speed = float(np.hypot(*velocity)) if dim == 2 else abs(float(velocity[0]))
-    direction = float(np.arctan2(velocity[-1], velocity[0])) if dim == 2 else (0.0 if velocity[0] >= 0 else np.pi)
-    if speed == 0:
-        direction = 0.0 if sliding_direction is None else sliding_direction
-    elif sliding_direction is not None and not np.isclose(np.cos(sliding_direction - direction), 1.0, atol=1e-12):
-        raise ValueError(f"sliding_direction {sliding_direction!r} contradicts sliding_velocity {sliding_velocity!r} "
-                         f"(direction {direction:.6g} rad): give one of them")
-    if isinstance(material, Viscoelastic) and speed > 0:
-        if method == "active-set":
-            raise ValueError("method='active-set' solves symmetric (elastic) problems only; a viscoelastic body in "
-                             "steady sliding needs method='cg'")
-        if not periodic:
-            raise ValueError("sliding_velocity: steady viscoelastic sliding is modelled on a periodic window "
-                             "(periodic=True); enlarge the window around an isolated indenter")
-    return tuple(float(v) for v in velocity), direction
-
-
 def _setup(heights, *, material, mean_pressure, penetration, periodic, tol, max_iter, kernel, method, length,
            initial_pressure, target_error, layer, friction, sliding_direction, sliding_velocity,
            adhesion=None) -> _Setup:
@@ -519,7 +399,7 @@ def _setup(heights, *, material, mean_pressure, penetration, periodic, tol, max_
     E, nu = material.E0, material.nu
     E_star = contact_modulus(E, nu)
     if adhesion is None:
-        _check_loads(mean_pressure, penetration)
+        check_loads(mean_pressure, penetration)
     else:
         adhesive_contact.check(adhesion, values, spacing=grid.spacing, mean_pressure=mean_pressure, penetration=penetration,
                                friction=friction, method=method, periodic=periodic)
@@ -530,15 +410,15 @@ def _setup(heights, *, material, mean_pressure, penetration, periodic, tol, max_
         if periodic:
             accuracy.check_resolution(values, target_error, length=grid.lengths)
     tol = (1e-8 if adhesion is None else adhesive_contact.DEFAULT_TOL) if tol is None else tol
-    _check_tolerance(tol, "tol")
+    check_tolerance(tol, "tol")
     if int(max_iter) < 1:
         raise ValueError(f"max_iter must be >= 1, got {max_iter!r}")
     if kernel not in KERNELS:
         raise ValueError(f"kernel must be one of {KERNELS}, got {kernel!r}")
     if method not in METHODS:
         raise ValueError(f"method must be one of {METHODS}, got {method!r}")
-    _check_friction(layer, friction, sliding_direction, nu, method, kernel, periodic)
-    velocity, sliding_direction = _check_velocity(sliding_velocity, sliding_direction, grid.dim, material, method,
+    check_friction(layer, friction, sliding_direction, nu, method, kernel, periodic)
+    velocity, sliding_direction = check_velocity(sliding_velocity, sliding_direction, grid.dim, material, method,
                                                   periodic)
     if adhesion is not None and velocity is not None and any(v != 0 for v in velocity):
         raise ValueError(f"sliding_velocity: adhesion is modelled at rest (a steady sliding adhesive contact is not "
@@ -568,31 +448,3 @@ def _setup(heights, *, material, mean_pressure, penetration, periodic, tol, max_
     solver_args = {"mean_pressure": mean_pressure, "penetration": penetration, "tol": tol,
                    "max_iter": int(max_iter), "initial_pressure": warm}
     return _Setup(values, grid, dims, coords, body, solver_args, attrs, method, adhesion)
-
-
-def _touches_edge(pressure: np.ndarray) -> bool:
-    edges = [np.take(pressure, i, axis=a) for a in range(pressure.ndim) for i in (0, -1)]
-    return any(np.any(e > 0) for e in edges)
-
-
-def to_dataset(state: ContactState, *, dims, coords, length_unit="m", pressure_unit="Pa") -> xr.Dataset:
-    """Label a :class:`ContactState` as a CF-style Dataset."""
-    def a(name):
-        return attrs_for(name, length=length_unit, pressure=pressure_unit)
-
-    fields = {name: (dims, getattr(state, name), a(name)) for name in ("pressure", "gap", "displacement")}
-    scalars = {
-        "contact_area": float(np.count_nonzero(state.pressure > 0)) / state.pressure.size,
-        "mean_pressure": state.mean_pressure,
-        "penetration": state.penetration,
-        "iterations": state.iterations,
-        "residual": state.residual,
-    }
-    data = dict(fields)
-    data.update({k: ((), v, a(k)) for k, v in scalars.items()})
-    ds = xr.Dataset(data, coords=coords)
-    for d in dims:
-        if not ds[d].attrs:
-            ds[d].attrs.update(a(d))
-    ds.attrs["Conventions"] = "CF-1.10"
-    return ds

@@ -1,10 +1,14 @@
-"""The single registry of variable labels: name -> units and long_name.
+"""The single registry of variable labels (name -> units and long_name), and the labelling of a solver's
+state as a Dataset.
 
 Units are templates: ``{length}`` and ``{pressure}`` are filled with the units the caller
 declares (SI by default), because the solvers themselves are unit-agnostic.
 """
 
 from __future__ import annotations
+
+import numpy as np
+import xarray as xr
 
 VARIABLES: dict[str, dict[str, str]] = {
     "x": {"units": "{length}", "long_name": "position along x"},
@@ -78,3 +82,27 @@ def attrs_for(name: str, *, length: str = "m", pressure: str = "Pa") -> dict[str
     """CF attributes of ``name`` with the declared units substituted."""
     entry = VARIABLES[name]
     return {"units": entry["units"].format(length=length, pressure=pressure), "long_name": entry["long_name"]}
+
+
+def to_dataset(state, *, dims, coords, length_unit="m", pressure_unit="Pa") -> xr.Dataset:
+    """Label a solver's :class:`contactlib.solvers.ContactState` as a CF-style Dataset: its fields on
+    ``dims``, its scalars, units and long names from :data:`VARIABLES`."""
+    def a(name):
+        return attrs_for(name, length=length_unit, pressure=pressure_unit)
+
+    fields = {name: (dims, getattr(state, name), a(name)) for name in ("pressure", "gap", "displacement")}
+    scalars = {
+        "contact_area": float(np.count_nonzero(state.pressure > 0)) / state.pressure.size,
+        "mean_pressure": state.mean_pressure,
+        "penetration": state.penetration,
+        "iterations": state.iterations,
+        "residual": state.residual,
+    }
+    data = dict(fields)
+    data.update({k: ((), v, a(k)) for k, v in scalars.items()})
+    ds = xr.Dataset(data, coords=coords)
+    for d in dims:
+        if not ds[d].attrs:
+            ds[d].attrs.update(a(d))
+    ds.attrs["Conventions"] = "CF-1.10"
+    return ds

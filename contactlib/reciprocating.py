@@ -14,7 +14,8 @@ import numpy as np
 import xarray as xr
 
 from .bodies import Layer
-from .contact import ConvergenceError, _check_tolerance, grid_of
+from .contact import ConvergenceError
+from .inputs import check_tolerance, grid_of
 from .labels import attrs_for
 from .materials import material_of
 from .solvers.state import inner
@@ -81,7 +82,7 @@ def solve_reciprocating(
     if not isinstance(max_cycles, int) or not isinstance(min_cycles, int) or not 2 <= min_cycles <= max_cycles:
         raise ValueError(f"need integers 2 <= min_cycles <= max_cycles, got min_cycles={min_cycles!r}, "
                          f"max_cycles={max_cycles!r}")
-    _check_tolerance(cycle_tol, "cycle_tol")
+    check_tolerance(cycle_tol, "cycle_tol")
     if not isinstance(direction, (int, float)) or not math.isfinite(direction):
         raise ValueError(f"direction must be a finite angle [rad], got {direction!r}")
     dt = 1.0 / (frequency * steps_per_cycle)

@@ -28,9 +28,9 @@ import xarray as xr
 from ._version import __version__
 from .analysis.friction import directional_slope
 from .bodies import Layer, body_model
-from .contact import ConvergenceError, _check_friction, _check_tolerance, _touches_edge, constrained_solve, grid_of, \
-    periodic_of
+from .contact import ConvergenceError, constrained_solve
 from .hereditary import PronyHistory
+from .inputs import check_friction, check_tolerance, grid_of, periodic_of, touches_edge
 from .labels import attrs_for
 from .materials import Elastic, material_of
 
@@ -263,7 +263,7 @@ class _Stepper:
         if not state.converged:
             raise ConvergenceError(f"{state.solver} did not converge in {state.iterations} iterations: residual "
                                    f"{state.residual:.3e} > tol {self.tol:.1e}", residual=state.residual, dataset=None)
-        if not self.periodic and _touches_edge(state.pressure):
+        if not self.periodic and touches_edge(state.pressure):
             raise ValueError("periodic=False: the contact reaches the edge of the window; enlarge the window")
         self.previous, self.pressure = self.pressure, state.pressure
         p = state.pressure
@@ -353,10 +353,10 @@ def _prepare(heights, *, times, material, mean_pressure, penetration, path, laye
     """Validate a run; returns ``(stepper, times, loads, positions, control)``."""
     values, grid, dims, _ = grid_of(heights, length)
     periodic = periodic_of(heights, periodic)
-    _check_tolerance(tol, "tol")
+    check_tolerance(tol, "tol")
     if isinstance(max_iter, bool) or not isinstance(max_iter, (int, np.integer)) or max_iter < 1:
         raise ValueError(f"max_iter must be an integer >= 1, got {max_iter!r}")
-    _check_friction(layer, 0.0, 0.0, material.nu, "cg", "spectral", periodic)
+    check_friction(layer, 0.0, 0.0, material.nu, "cg", "spectral", periodic)
     times = _times(times)
     if (mean_pressure is None) == (penetration is None):
         raise ValueError("give exactly one of mean_pressure or penetration")

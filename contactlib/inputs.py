@@ -1,0 +1,140 @@
+"""The checks of every entry point's input: heights to an array on a grid, the window's periodicity, loads,
+tolerances, friction and sliding velocity. Each refuses bad input with a ``ValueError`` naming the parameter,
+before anything is built."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import xarray as xr
+
+from .bodies import Layer
+from .grid import Grid
+from .materials import Viscoelastic
+
+
+def grid_of(heights, length=None) -> tuple[np.ndarray, Grid, tuple[str, ...], dict]:
+    """Heights array, grid, dim names and coords of a DataArray or ndarray input."""
+    if isinstance(heights, xr.DataArray):
+        values = np.asarray(heights.values, dtype=float)
+        dims = tuple(heights.dims)
+        if length is None:
+            lengths = []
+            for d in dims:
+                if d not in heights.coords:
+                    raise ValueError(f"heights: dimension {d!r} has no coordinate; pass length=")
+                c = np.asarray(heights[d].values, dtype=float)
+                if c.size < 2:
+                    raise ValueError(f"heights: grid smaller than 2 points along {d!r}")
+                lengths.append(float(c[1] - c[0]) * c.size)
+            lengths = tuple(lengths)
+        else:
+            lengths = lengths_of(length, values.ndim)
+        coords = {d: heights[d] for d in dims if d in heights.coords}
+    else:
+        values = np.asarray(heights, dtype=float)
+        if values.ndim not in (1, 2):
+            raise ValueError(f"heights must be 1D or 2D, got {values.ndim} dimensions")
+        dims = ("x", "y")[: values.ndim]
+        lengths = lengths_of(1.0 if length is None else length, values.ndim)
+        coords = {}
+    if values.ndim not in (1, 2):
+        raise ValueError(f"heights must be 1D or 2D, got {values.ndim} dimensions")
+    if min(values.shape) < 2:
+        raise ValueError(f"heights: grid smaller than 2 points, shape {values.shape}")
+    if not np.all(np.isfinite(values)):
+        raise ValueError("heights contain NaN or infinite values")
+    grid = Grid(values.shape, lengths)
+    if not coords:
+        coords = {d: (d, c) for d, c in zip(dims, grid.coordinates())}
+    return np.ascontiguousarray(values), grid, dims, coords
+
+
+def periodic_of(heights, periodic: bool | None) -> bool:
+    """``periodic`` if given, else what a DataArray's ``attrs['periodic']`` says (a measured surface from
+    :func:`contactlib.surfaces.read` is non-periodic unless its file or reader said so), else True."""
+    if periodic is not None:
+        return bool(periodic)
+    if isinstance(heights, xr.DataArray) and "periodic" in heights.attrs:
+        return bool(heights.attrs["periodic"])
+    return True
+
+
+def lengths_of(length, ndim: int) -> tuple[float, ...]:
+    lengths = tuple(float(v) for v in np.broadcast_to(np.asarray(length, dtype=float), (ndim,)))
+    for v in lengths:
+        if not math.isfinite(v) or v <= 0:
+            raise ValueError(f"length must be finite and > 0, got {length!r}")
+    return lengths
+
+
+def check_tolerance(value, name: str) -> None:
+    if not (isinstance(value, (int, float)) and math.isfinite(value) and value > 0):
+        raise ValueError(f"{name} must be finite and > 0, got {value!r}")
+
+
+def check_loads(mean_pressure, penetration) -> None:
+    if (mean_pressure is None) == (penetration is None):
+        raise ValueError("give exactly one of mean_pressure or penetration")
+    if mean_pressure is not None and (not math.isfinite(mean_pressure) or mean_pressure < 0):
+        raise ValueError(f"mean_pressure must be finite and >= 0, got {mean_pressure!r}")
+    if penetration is not None and not math.isfinite(penetration):
+        raise ValueError(f"penetration must be finite, got {penetration!r}")
+
+
+def check_friction(layer, friction, sliding_direction, nu, method, kernel, periodic) -> None:
+    """The scene's body and interface: refused with the parameter named, before anything is built."""
+    sliding_direction = 0.0 if sliding_direction is None else sliding_direction
+    if layer is not None:
+        if not isinstance(layer, Layer):
+            raise ValueError(f"layer must be a contactlib.Layer or None, got {layer!r}")
+        if not 0.0 <= nu <= 0.5:
+            raise ValueError(f"nu (Poisson ratio) must lie in [0, 0.5] for a layer, got {nu!r}")
+        if not periodic:
+            raise ValueError("layer: a layer is modelled on a periodic window only (periodic=True)")
+    if isinstance(friction, bool) or not isinstance(friction, (int, float)) or not math.isfinite(friction) \
+            or friction < 0:
+        raise ValueError(f"friction (Coulomb coefficient) must be a finite number >= 0, got {friction!r}")
+    if isinstance(sliding_direction, bool) or not isinstance(sliding_direction, (int, float)) \
+            or not math.isfinite(sliding_direction):
+        raise ValueError(f"sliding_direction must be a finite angle [rad], got {sliding_direction!r}")
+    if method == "active-set" and (layer is not None or friction > 0):
+        raise ValueError("method='active-set' solves frictionless half-space contact only: use method='cg' "
+                         "with a layer or friction")
+    if kernel == "love" and (layer is not None or friction > 0):
+        raise ValueError("kernel='love' is a half-space, frictionless kernel: use kernel='spectral' with a layer "
+                         "or friction")
+
+
+def check_velocity(sliding_velocity, sliding_direction, dim, material, method, periodic):
+    """``(velocity, direction)``: the validated velocity (a tuple per axis, or None) and the sliding
+    direction it sets; contradictions and unsupported scenes refused with the parameter named."""
+    if sliding_velocity is None:
+        return None, 0.0 if sliding_direction is None else sliding_direction
+    velocity = np.atleast_1d(np.asarray(sliding_velocity, dtype=float))
+    if velocity.shape != (dim,):
+        raise ValueError(f"sliding_velocity must have {dim} component(s) (one per axis of the heights), "
+                         f"got {sliding_velocity!r}")
+    if not np.all(np.isfinite(velocity)):
+        raise ValueError(f"sliding_velocity must be finite, got {sliding_velocity!r}")
+    speed = float(np.hypot(*velocity)) if dim == 2 else abs(float(velocity[0]))
+    direction = float(np.arctan2(velocity[-1], velocity[0])) if dim == 2 else (0.0 if velocity[0] >= 0 else np.pi)
+    if speed == 0:
+        direction = 0.0 if sliding_direction is None else sliding_direction
+    elif sliding_direction is not None and not np.isclose(np.cos(sliding_direction - direction), 1.0, atol=1e-12):
+        raise ValueError(f"sliding_direction {sliding_direction!r} contradicts sliding_velocity {sliding_velocity!r} "
+                         f"(direction {direction:.6g} rad): give one of them")
+    if isinstance(material, Viscoelastic) and speed > 0:
+        if method == "active-set":
+            raise ValueError("method='active-set' solves symmetric (elastic) problems only; a viscoelastic body in "
+                             "steady sliding needs method='cg'")
+        if not periodic:
+            raise ValueError("sliding_velocity: steady viscoelastic sliding is modelled on a periodic window "
+                             "(periodic=True); enlarge the window around an isolated indenter")
+    return tuple(float(v) for v in velocity), direction
+
+
+def touches_edge(pressure: np.ndarray) -> bool:
+    edges = [np.take(pressure, i, axis=a) for a in range(pressure.ndim) for i in (0, -1)]
+    return any(np.any(e > 0) for e in edges)
