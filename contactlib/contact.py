@@ -18,7 +18,8 @@ from .analysis.viscoelastic import traction_power
 from .materials import Elastic, Viscoelastic, contact_modulus, material_of
 from .bodies import BodyModel, Layer, body_model
 from .operators import KERNELS
-from .solvers import ContactState, solve_active_set, solve_coupled, solve_periodic_displacement, solve_polonsky_keer
+from .solvers import (ContactState, solve_active_set, solve_coupled, solve_periodic_displacement, solve_polonsky_keer,
+                      solve_semismooth)
 
 METHODS = ("cg", "active-set")
 
@@ -454,6 +455,9 @@ def constrained_solve(operator, heights, *, monitor=None, verify_below=None, res
     if not operator.definite and args["penetration"] is not None:
         args = {k: v for k, v in args.items() if k != "mean_pressure"}
         return solve_periodic_displacement(operator, heights, monitor=monitor, verify_below=verify_below, **args)
+    if not operator.preconditionable and args["mean_pressure"] is not None:
+        # a plate-like body (a thin remote-pressure layer): its soft long waves need a coarse space
+        return solve_semismooth(operator, heights, monitor=monitor, **args)
     if restart_fraction is not None:
         args["restart_fraction"] = restart_fraction
     return solve_polonsky_keer(operator, heights, monitor=monitor, **args)
