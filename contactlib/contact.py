@@ -19,7 +19,8 @@ from .grid import Grid
 from .inputs import check_friction, check_loads, check_tolerance, check_velocity, grid_of, periodic_of, \
     touches_edge
 from .operators import KERNELS
-from .solvers import ContactState, solve_active_set, solve_coupled, solve_periodic_displacement, solve_polonsky_keer
+from .solvers import (ContactState, solve_active_set, solve_coupled, solve_periodic_displacement, solve_polonsky_keer,
+                      solve_semismooth)
 
 METHODS = ("cg", "active-set")
 
@@ -386,6 +387,9 @@ def constrained_solve(operator, heights, *, monitor=None, verify_below=None, res
     if not operator.definite and args["penetration"] is not None:
         args = {k: v for k, v in args.items() if k != "mean_pressure"}
         return solve_periodic_displacement(operator, heights, monitor=monitor, verify_below=verify_below, **args)
+    if not operator.preconditionable and args["mean_pressure"] is not None:
+        # a plate-like body (a thin remote-pressure layer): its soft long waves need a coarse space
+        return solve_semismooth(operator, heights, monitor=monitor, **args)
     if restart_fraction is not None:
         args["restart_fraction"] = restart_fraction
     return solve_polonsky_keer(operator, heights, monitor=monitor, **args)

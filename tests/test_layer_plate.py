@@ -1,0 +1,119 @@
+"""Thin remote-pressure layers (plates) under load control: the semismooth Newton solver with the long-wave
+coarse space, checked against independent dense solutions."""
+
+import numpy as np
+import pytest
+
+import contactlib
+from contactlib.bodies import body_model
+from contactlib.grid import Grid
+from contactlib.materials import Elastic
+from contactlib.solvers import solve_active_set
+
+Q0H = 0.1  # compliance 6000x the half-space's at the longest wave
+
+
+def _scene(n, dim, seed=4):
+    return contactlib.surfaces.self_affine(n, hurst=0.8, q_roll=2, q_cutoff=n // (8 if dim == 1 else 4), rms_slope=0.1,
+                                           seed=seed, dim=dim)
+
+
+def _layer():
+    return contactlib.Layer(Q0H / (2 * np.pi), "remote_pressure")
+
+
+def _dense(h, nu, friction):
+    """The dense influence matrix of ``K + W`` (W: the friction coupling, as the solver gets it), built by
+    applying the body model's operators to unit loads."""
+    grid = Grid(h.shape, (1.0,) * h.ndim)
+    body = body_model(grid, material=Elastic(1.0, nu), layer=_layer(), friction=friction, direction=0.0, tol=1e-10,
+                      kernel="spectral", periodic=True)
+    n = h.size
+    columns = np.empty((n, n))
+    for j in range(n):
+        unit = np.zeros(n)
+        unit[j] = 1.0
+        column = body.compliance(unit.reshape(h.shape)).reshape(-1)
+        if body.coupling is not None:
+            column += body.coupling(unit.reshape(h.shape)).reshape(-1)
+        columns[:, j] = column
+    return columns, body
+
+
+def _dense_load_control(M, h, mean_pressure):
+    """Primal-dual active sets with a direct (LU) solve on each set: ``p >= 0``, ``g = M p - h + max h - d >= 0``,
+    ``p g = 0``, ``mean(p)`` given."""
+    hp = (h - h.max()).ravel()
+    n = hp.size
+    active = hp >= np.quantile(hp, 0.9)
+    for _ in range(100):
+        idx = np.flatnonzero(active)
+        system = np.zeros((idx.size + 1, idx.size + 1))
+        system[:-1, :-1] = M[np.ix_(idx, idx)]
+        system[:-1, -1], system[-1, :-1] = -1.0, 1.0
+        solution = np.linalg.solve(system, np.append(hp[idx], n * mean_pressure))
+        p = np.zeros(n)
+        p[idx] = solution[:-1]
+        gap = M @ p - hp - solution[-1]
+        following = np.where(active, p > 0, gap < 0)
+        if np.array_equal(following, active):
+            return p.reshape(h.shape)
+        active = following
+    raise AssertionError("dense reference: the active sets cycled")
+
+
+@pytest.mark.parametrize("mean_pressure, area", [(1e-3, (0.03, 0.08)), (1e-2, (0.2, 0.4))])
+def test_plate_1d_matches_the_seed_active_set_method(mean_pressure, area):
+    """q0 h = 0.1, nu = 0.3, 512 points: the seed's active-set scheme (Gauss-Seidel on a dense matrix, root
+    search on the penetration) gives the same contact set and pressure to 1e-7. Polonsky-Keer stalled here at
+    residuals of 2e-2 to 0.4."""
+    h = _scene(512, 1)
+    out = contactlib.solve(h, E=1.0, nu=0.3, mean_pressure=mean_pressure, layer=_layer(), tol=1e-10)
+    assert out.attrs["solver"] == "semismooth-newton" and out.attrs["converged"] == 1
+    assert area[0] < float(out.contact_area) < area[1]
+    assert float(out.mean_pressure) == pytest.approx(mean_pressure, rel=1e-10)
+    body = body_model(Grid(h.shape, (1.0,)), material=Elastic(1.0, 0.3), layer=_layer(), friction=0.0,
+                      direction=0.0, tol=1e-10, kernel="spectral", periodic=True)
+    reference = solve_active_set(body.compliance, h.values, mean_pressure=mean_pressure, tol=1e-10)
+    np.testing.assert_array_equal(out.pressure.values > 0, reference.pressure > 0)
+    assert np.linalg.norm(out.pressure.values - reference.pressure) / np.linalg.norm(reference.pressure) < 1e-7
+
+
+@pytest.mark.parametrize("nu", [0.0, 0.5])
+@pytest.mark.parametrize("friction", [0.0, 1.0])
+def test_plate_1d_with_friction_matches_a_dense_solve(nu, friction):
+    """q0 h = 0.1, mu_c 0 and 1, nu 0 and 0.5 (geometric coupling only): the coupled solve around the
+    semismooth inner solver against direct solves of the dense non-symmetric problem, pressure within 1e-6."""
+    h = _scene(256, 1, seed=5)
+    out = contactlib.solve(h, E=1.0, nu=nu, mean_pressure=5e-3, layer=_layer(), friction=friction, tol=1e-10)
+    assert out.attrs["converged"] == 1 and "semismooth-newton" in out.attrs["solver"]
+    M, _ = _dense(h.values, nu, friction)
+    reference = _dense_load_control(M, h.values, 5e-3)
+    assert 0.05 < float(out.contact_area) < 0.95
+    np.testing.assert_array_equal(out.pressure.values > 0, reference > 0)
+    assert np.linalg.norm(out.pressure.values - reference) / np.linalg.norm(reference) < 1e-6
+
+
+@pytest.mark.parametrize("friction", [0.0, 1.0])
+def test_plate_2d_matches_a_dense_solve(friction):
+    """2D, 24^2, q0 h = 0.1, nu = 0.3, partial contact, mu_c 0 and 1: the same contact set as the dense direct
+    solve and the pressure within 1e-6."""
+    h = _scene(24, 2, seed=1)
+    out = contactlib.solve(h, E=1.0, nu=0.3, mean_pressure=1e-4, layer=_layer(), friction=friction, tol=1e-10)
+    assert out.attrs["converged"] == 1 and "semismooth-newton" in out.attrs["solver"]
+    M, _ = _dense(h.values, 0.3, friction)
+    reference = _dense_load_control(M, h.values, 1e-4)
+    assert 0.02 < float(out.contact_area) < 0.9
+    np.testing.assert_array_equal(out.pressure.values > 0, reference > 0)
+    assert np.linalg.norm(out.pressure.values - reference) / np.linalg.norm(reference) < 1e-6
+
+
+@pytest.mark.parametrize("friction", [0.0, 1.0])
+def test_plate_2d_converges_from_low_contact_to_full(friction):
+    """64^2, q0 h = 0.1: converged at ~1 % contact and at full contact (reported as a status, with a message)."""
+    h = _scene(64, 2)
+    low = contactlib.solve(h, E=1.0, nu=0.3, mean_pressure=3e-5, layer=_layer(), friction=friction, tol=1e-8)
+    assert low.attrs["converged"] == 1 and 0.005 < float(low.contact_area) < 0.03
+    full = contactlib.solve(h, E=1.0, nu=0.3, mean_pressure=0.1, layer=_layer(), friction=friction, tol=1e-8)
+    assert full.attrs["converged"] == 1 and full.attrs["full_contact"] == 1
+    assert "full contact" in full.attrs["full_contact_message"]
