@@ -18,7 +18,7 @@ from .contact import ConvergenceError
 from .inputs import check_tolerance, grid_of
 from .labels import attrs_for
 from .materials import material_of
-from .solvers.state import inner
+from .solvers.state import dot
 from .transient import TransientInterrupted, _prepare, _Record
 
 log = logging.getLogger(__name__)
@@ -169,10 +169,10 @@ def _extrapolate(first, second, third):
     the ratio of the last two changes; the state unchanged unless ``0 < r < 1``."""
     d1 = [b - a for a, b in zip(first, second)]
     d2 = [b - a for a, b in zip(second, third)]
-    norm = sum(inner(x, x) for x in d1)
+    norm = sum(dot(x, x) for x in d1)
     if norm <= 0:
         return third
-    ratio = sum(inner(x, y) for x, y in zip(d1, d2)) / norm
+    ratio = sum(dot(x, y) for x, y in zip(d1, d2)) / norm
     if not 0 < ratio < 0.99:
         return third
     return [x + d * (ratio / (1 - ratio)) for x, d in zip(third, d2)]

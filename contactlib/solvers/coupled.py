@@ -37,7 +37,7 @@ from collections.abc import Callable
 
 import numpy as np
 
-from .state import ContactState, contact_residual, height_scale
+from .state import ContactState, contact_residual, dot, height_scale
 
 ANDERSON_MEMORY = 8
 """Past iterates kept by the Anderson mixing (each three fields: pressure, residual, ``W`` pressure)."""
@@ -148,7 +148,7 @@ class _Anderson:
             if len(self.diffs) == self.memory:
                 self.diffs.pop(0)
                 self.gram = self.gram[1:, 1:]
-            row = np.array([float(np.vdot(d[1], df)) for d in self.diffs] + [float(np.vdot(df, df))])
+            row = np.array([dot(d[1], df) for d in self.diffs] + [dot(df, df)])
             m = len(self.diffs) + 1
             gram = np.empty((m, m))
             gram[:-1, :-1], gram[-1, :], gram[:, -1] = self.gram, row, row
@@ -158,7 +158,7 @@ class _Anderson:
         x, Wx = y.copy(), Wy.copy()
         if not self.diffs:
             return x, Wx
-        rhs = np.array([float(np.vdot(d[1], f)) for d in self.diffs])
+        rhs = np.array([dot(d[1], f) for d in self.diffs])
         # a relative ridge keeps the normal equations solvable when differences become parallel
         ridge = 1e-12 * np.trace(self.gram) * np.eye(len(rhs))
         gamma = np.linalg.solve(self.gram + ridge, rhs)

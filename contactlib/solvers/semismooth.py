@@ -25,7 +25,7 @@ from collections.abc import Callable
 import numpy as np
 
 from .coarse import TwoLevel, soft_modes
-from .state import ContactState, contact_residual, height_scale
+from .state import ContactState, contact_residual, dot, height_scale
 
 MAX_SETS = 200
 """Contact-set updates before the solve is returned as not converged."""
@@ -119,19 +119,19 @@ def _solve_on_set(operator, modes, hp, index, start, total, tol, max_iter):
     g = K(p) - hp[index]
     r = -(g - g.mean())
     z = preconditioner.apply(r)
-    t, rz = z.copy(), float(r @ z)
+    t, rz = z.copy(), dot(r, z)
     it = 0
     while np.abs(r).max() > tol and it < max_iter:
         Kt = K(t)
         Kt -= Kt.mean()
-        tKt = float(t @ Kt)
+        tKt = dot(t, Kt)
         if tKt <= 0:
             break
         alpha = rz / tKt
         p += alpha * t
         r -= alpha * Kt
         z = preconditioner.apply(r)
-        rz, previous = float(r @ z), rz
+        rz, previous = dot(r, z), rz
         t = z + (rz / previous) * t
         it += 1
     g = K(p) - hp[index]  # the true gap: no drift of the updated residual

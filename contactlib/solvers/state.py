@@ -49,7 +49,7 @@ def contact_residual(pressure: np.ndarray, gap: np.ndarray, scale: float) -> flo
     return (comp + pbar * pen) / (pbar * scale)
 
 
-def inner(a: np.ndarray, b: np.ndarray) -> float:
+def dot(a: np.ndarray, b: np.ndarray) -> float:
     """``sum(a * b)`` of two real fields, without BLAS. OpenBLAS threads a dot product of a 128^2 field,
     and next to FFTW's spinning threads or a second process that took 23 ms against 5 us single-threaded
     (2 cores): every inner product of the solvers' loops goes through numpy's own loop instead."""
