@@ -109,11 +109,12 @@ def test_penetration_control_matches_load_control():
     assert np.linalg.norm(pushed.pressure - loaded.pressure) / np.linalg.norm(loaded.pressure) < 1e-5
 
 
-def test_unconverged_is_reported_not_hidden():
+@pytest.mark.parametrize("max_iter", [3, 20])
+def test_unconverged_is_reported_not_hidden(max_iter):
     h = profile()
     with pytest.raises(contactlib.ConvergenceError, match="residual"):
         contactlib.solve(h, material=GLASSY_1000, mean_pressure=0.5, sliding_velocity=1e-3 / q0_of(h), tol=1e-8,
-                         max_iter=20)
+                         max_iter=max_iter)
 
 
 def test_dispatch_rule():

@@ -132,7 +132,7 @@ def solve_splitting(
     if load_control and mean_pressure <= 0:
         zero = np.zeros(shape)
         return ContactState(zero, -relative, zero.copy(), 0.0, 0.0, 0, 0.0, True, "douglas-rachford")
-    if not load_control and M0 == 0 and penetration <= 0:
+    if not load_control and penetration <= 0:  # p = 0 leaves every gap open: the (unique) solution
         zero = np.zeros(shape)
         return ContactState(zero, -relative - penetration, zero.copy(), float(penetration), 0.0, 0, 0.0, True,
                             "douglas-rachford")
@@ -153,7 +153,7 @@ def solve_splitting(
 
     def evaluate(p, d):
         """The state at ``p`` (its mean set to the load) with the approach that fits it best."""
-        if load_control:
+        if load_control and p.mean() > 0:
             p = p * (load / p.mean())
         u = fft.irfftn(multiplier * fft.rfftn(p), shape)
         # the approach: the one under load control from the iteration; a penetration is given
@@ -213,6 +213,8 @@ def solve_splitting(
                     continue
         plain_next = Tz
         z = mixer.next(Tz, f) if memory > 0 else Tz
+    if state_fields is None:  # stopped before the first check
+        state_fields = (evaluate(np.maximum(z, 0.0), d), d)
     (p, u, gap, residual), d = state_fields
     return ContactState(pressure=p, gap=gap, displacement=u, penetration=float(d), mean_pressure=float(p.mean()),
                         iterations=it, residual=residual, converged=bool(residual <= tol), solver="douglas-rachford")
