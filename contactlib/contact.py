@@ -20,7 +20,7 @@ from .inputs import check_friction, check_loads, check_tolerance, check_velocity
     touches_edge
 from .operators import KERNELS
 from .solvers import (ContactState, solve_active_set, solve_coupled, solve_periodic_displacement, solve_polonsky_keer,
-                      solve_semismooth)
+                      solve_semismooth, splitting)
 
 METHODS = ("cg", "active-set")
 
@@ -294,11 +294,22 @@ class _Setup:
         if self.adhesion is not None:
             return adhesive_contact.run(self, self.adhesion)
         if self.body.coupling is not None:
-            return solve_coupled(self._symmetric, self.body.coupling, self.values, **self.solver_args)
+            if self.operator.periodic and splitting.loss_dominated(self.body.factor):
+                return self._splitting()
+            state = solve_coupled(self._symmetric, self.body.coupling, self.values, **self.solver_args)
+            if not state.converged and self.operator.periodic:  # a stalled outer loop: the method that needs no split
+                fallback = self._splitting()
+                state = fallback if fallback.residual < state.residual else state
+            return state
         if self.method == "cg":
             return self._symmetric(self.values, monitor=monitor, verify_below=verify_below, **self.solver_args)
         args = {k: v for k, v in self.solver_args.items() if k != "initial_pressure"}
         return solve_active_set(self.operator, self.values, **args)
+
+    def _splitting(self) -> ContactState:
+        """Douglas-Rachford on the whole complex multiplier (:mod:`contactlib.solvers.splitting`)."""
+        multiplier = splitting.fourier_multiplier(self.body.compliance, self.body.coupling)
+        return splitting.solve_splitting(multiplier, self.values, **self.solver_args)
 
     def _symmetric(self, heights, *, monitor=None, verify_below=None, **args) -> ContactState:
         """The constrained CG of the symmetric compliance (the whole problem, or a coupled solve's inner one)."""

@@ -1,0 +1,105 @@
+"""Douglas-Rachford on the complex multiplier against the fixed point on the skew part, same scenes.
+
+For each scene the body model's operators are built once (as :func:`contactlib.solve` builds them) and both
+solvers run on them, interleaved, medians of ``--repeats`` (a solver that does not converge runs once):
+:func:`contactlib.solvers.solve_coupled` (Anderson on the skew part around the symmetric constrained CG) and
+:func:`contactlib.solvers.splitting.solve_splitting`. Printed as a markdown table: the skew ratio
+``max |Im M| / Re M``, iterations, residual, seconds, the time ratio and the pressures' relative difference.
+
+Run ``python benchmarks/bench_splitting.py --help``.
+"""
+
+from __future__ import annotations
+
+import os
+
+for _var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
+    os.environ.setdefault(_var, "1")
+
+import argparse
+import statistics
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+import contactlib  # noqa: E402
+from contactlib import Elastic, Layer, Viscoelastic  # noqa: E402
+from contactlib.contact import _setup  # noqa: E402
+from contactlib.solvers import solve_coupled  # noqa: E402
+from contactlib.solvers.splitting import fourier_multiplier, solve_splitting  # noqa: E402
+from bench_solver import host_info  # noqa: E402
+
+
+def profile(n, dim=1, cutoff=None):
+    cutoff = min(64, n // 4) if cutoff is None else cutoff
+    return contactlib.surfaces.self_affine(n, hurst=0.8, q_roll=1, q_cutoff=cutoff, rms_slope=0.1, seed=3, dim=dim)
+
+
+def q0_of(h):
+    return 2 * np.pi / (float(h.x[1] - h.x[0]) * h.sizes["x"])
+
+
+def scene(h, material, load, velocity=None, friction=0.0, layer=None, tol=1e-8):
+    return _setup(h, material=material, mean_pressure=load, penetration=None, periodic=True, tol=tol, max_iter=3000,
+                  kernel="spectral", method="cg", length=None, initial_pressure=None, target_error=None, layer=layer,
+                  friction=friction, sliding_direction=0.0 if friction else None, sliding_velocity=velocity)
+
+
+def scenes(n1, n2):
+    h, h2 = profile(n1), profile(n2, dim=2, cutoff=n2 // 8)
+    q0, q02 = q0_of(h), q0_of(h2)
+    sls = lambda r: Viscoelastic.standard_linear_solid(E0=1.0, E_inf=r, tau=1.0, nu=0.5)  # noqa: E731
+    for ratio, zeta in [(1000, 1e-4), (1000, 1e-3), (1000, 1e-2), (1000, 1.0), (10, 0.1), (10, 1.0)]:
+        yield f"1D {n1}, SLS E_inf/E0 = {ratio}, zeta = {zeta:g}, p = 0.5", scene(h, sls(ratio), 0.5, (zeta / q0,))
+    yield f"1D {n1}, SLS E_inf/E0 = 10, zeta = 1, p = 0.05", scene(h, sls(10), 0.05, (1 / q0,))
+    yield f"1D {n1}, Coulomb mu = 0.5, nu = 0.3, p = 0.05", scene(h, Elastic(1.0, 0.3), 0.05, friction=0.5)
+    yield f"2D {n2}^2, Coulomb mu = 0.5, nu = 0.3, p = 0.05", scene(h2, Elastic(1.0, 0.3), 0.05, friction=0.5)
+    yield f"2D {n2}^2, SLS E_inf/E0 = 10, zeta = 1, p = 0.05", scene(h2, sls(10), 0.05, (1 / q02, 0.0))
+    yield (f"1D {n1}, confined layer q0 h = 1.5, mu = 0.8, SLS 11, zeta = 1",
+           scene(h, sls(11), 0.05, (1 / q0,), friction=0.8, layer=Layer(1.5 / q0)))
+    yield (f"1D {n1}, confined layer q0 h = 0.1, mu = 1, elastic nu = 0.5",
+           scene(h, Elastic(1.0, 0.5), 0.05, friction=1.0, layer=Layer(0.1 / q0)))
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("--n1", type=int, default=1024, help="1D profile points")
+    ap.add_argument("--n2", type=int, default=256, help="2D surface side")
+    ap.add_argument("--repeats", type=int, default=5)
+    args = ap.parse_args(argv)
+    info = host_info()
+    print(f"# Douglas-Rachford vs coupled fixed point ({info.get('cpu', '?')}, contactlib {contactlib.__version__}), "
+          f"tol 1e-8, medians of {args.repeats}")
+    print("\n| scene | max\\|Im M\\|/Re M | coupled: it (outer), residual, s | DR: it, residual, s | t_DR / t_coupled "
+          "| \\|p_DR - p_c\\| / \\|p_DR\\| |")
+    print("|---|---|---|---|---|---|")
+    for name, s in scenes(args.n1, args.n2):
+        multiplier = fourier_multiplier(s.body.compliance, s.body.coupling)
+        nonzero = np.ones(multiplier.shape, dtype=bool)
+        nonzero.flat[0] = False
+        skew = float(np.max(np.abs(multiplier[nonzero].imag) / multiplier[nonzero].real))
+        load = s.solver_args["mean_pressure"]
+        tc, ts = [], []
+        for _ in range(args.repeats):
+            t0 = time.perf_counter()
+            c = solve_coupled(s._symmetric, s.body.coupling, s.values, **s.solver_args)
+            tc.append(time.perf_counter() - t0)
+            t0 = time.perf_counter()
+            d = solve_splitting(multiplier, s.values, mean_pressure=load, tol=s.solver_args["tol"])
+            ts.append(time.perf_counter() - t0)
+            if not c.converged:
+                break
+        diff = np.linalg.norm(c.pressure - d.pressure) / np.linalg.norm(d.pressure)
+        tcm, tsm = statistics.median(tc), statistics.median(ts)
+        cflag = "" if c.converged else " **not converged**"
+        dflag = "" if d.converged else " **not converged**"
+        print(f"| {name} | {skew:.3g} | {c.iterations} ({c.outer_iterations}), {c.residual:.1e}{cflag}, {tcm:.3f} | "
+              f"{d.iterations}, {d.residual:.1e}{dflag}, {tsm:.3f} | {tsm / tcm:.2f} | {diff:.1e} |", flush=True)
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())

@@ -1,0 +1,138 @@
+"""Douglas-Rachford on the complex Fourier multiplier: the loss-dominated viscoelastic cases the fixed point on
+the skew part cannot solve, checked against the real-space kernel and against the coupled solver where both work."""
+
+import numpy as np
+import pytest
+
+import contactlib
+from contactlib import Elastic, Viscoelastic
+from contactlib.contact import _setup
+from contactlib.reference import viscoelastic_profile as vp
+from contactlib.solvers import solve_coupled
+from contactlib.solvers.splitting import fourier_multiplier, loss_dominated, solve_splitting
+from contactlib.solvers.state import contact_residual, height_scale
+
+GLASSY_1000 = Viscoelastic.standard_linear_solid(E0=1.0, E_inf=1000.0, tau=1.0, nu=0.5)
+
+
+def profile(n=1024, seed=3, dim=1, cutoff=None):
+    cutoff = min(64, n // 4) if cutoff is None else cutoff
+    return contactlib.surfaces.self_affine(n, hurst=0.8, q_roll=1, q_cutoff=cutoff, rms_slope=0.1, seed=seed, dim=dim)
+
+
+def q0_of(h):
+    return 2 * np.pi / (float(h.x[1] - h.x[0]) * h.sizes["x"])
+
+
+def setup(h, material, mean_pressure, velocity=None, friction=0.0, kernel="spectral"):
+    return _setup(h, material=material, mean_pressure=mean_pressure, penetration=None, periodic=True, tol=1e-8,
+                  max_iter=10_000, kernel=kernel, method="cg", length=None, initial_pressure=None, target_error=None,
+                  layer=None, friction=friction, sliding_direction=0.0 if friction else None,
+                  sliding_velocity=velocity)
+
+
+@pytest.mark.parametrize("zeta, area", [(1e-4, (0.95, 1.0)), (1e-3, (0.1, 0.4)), (1e-2, (0.01, 0.08))])
+def test_loss_dominated_glassy_ratio_1000_converges(zeta, area):
+    """E_inf/E0 = 1000 at V tau q0 = 1e-4 .. 1e-2 (|Im M|/Re M = 16): solve dispatches here and converges to 1e-8;
+    the contact area falls from nearly full to a few percent, and the loss makes a positive mu_a."""
+    h = profile()
+    out = contactlib.solve(h, material=GLASSY_1000, mean_pressure=0.5, sliding_velocity=zeta / q0_of(h), tol=1e-8)
+    assert out.attrs["solver"] == "douglas-rachford"
+    assert out.attrs["converged"] == 1 and float(out.residual) <= 1e-8
+    assert float(out.mean_pressure) == pytest.approx(0.5, rel=1e-12)
+    assert area[0] < float(out.contact_area) < area[1]
+    assert float(out.friction_coefficient_interlocking) > 0
+
+
+@pytest.mark.parametrize("zeta", [1e-3, 1e-2])
+def test_loss_dominated_answer_solves_the_real_space_problem(zeta):
+    """The real-space eq 25 kernel (creep integrated in time, no Fourier multiplier) applied to the spectral
+    answer: the contact conditions hold to 1e-6 (the kernels agree to ~1e-8 of max |M|; the answer is unique, the
+    operator being monotone with Re M > 0)."""
+    n = 256
+    h = profile(n)
+    length = float(h.x[1] - h.x[0]) * n
+    V = zeta / q0_of(h)
+    out = contactlib.solve(h, material=GLASSY_1000, mean_pressure=0.5, sliding_velocity=V, kernel="love", tol=1e-10)
+    assert out.attrs["solver"] == "douglas-rachford" and float(out.residual) <= 1e-10
+    p = out.pressure.values
+    u = vp.CirculantOperator(vp.steady_sliding_influence(n, length=length, material=GLASSY_1000, velocity=V))(p)
+    relative = h.values - h.values.max()
+    contact = p > 0
+    approach = float(np.mean((u - relative)[contact]))
+    gap = u - relative - approach
+    assert contact_residual(p, gap, height_scale(h.values)) < 1e-6
+    assert approach == pytest.approx(float(out.penetration), rel=1e-6)
+
+
+def test_near_full_contact_agrees_with_the_real_space_active_set():
+    """At V tau q0 = 1e-4 (98 % contact) the seed's active set on the real-space kernel converges: pressures agree."""
+    n = 256
+    h = profile(n)
+    length = float(h.x[1] - h.x[0]) * n
+    V = 1e-4 / q0_of(h)
+    out = contactlib.solve(h, material=GLASSY_1000, mean_pressure=0.5, sliding_velocity=V, kernel="love", tol=1e-10)
+    real = vp.solve_profile(h.values, length=length, material=GLASSY_1000, velocity=V, mean_pressure=0.5, tol=1e-10)
+    assert real.converged and float(real.pressure.mean()) == pytest.approx(0.5, rel=1e-9)
+    p = out.pressure.values
+    assert np.linalg.norm(p - real.pressure) / np.linalg.norm(real.pressure) < 1e-4
+    assert float(out.contact_area) == pytest.approx(float((real.pressure > 0).mean()), abs=2 / n)
+
+
+@pytest.mark.parametrize("case", ["viscoelastic", "friction-1d", "friction-2d"])
+def test_agrees_with_the_coupled_solver_where_it_converges(case):
+    """Same body operators, same residual: E_inf/E0 = 10 at V tau q0 = 0.1; Coulomb friction mu = 0.5, nu = 0.3 on a
+    half-space in 1D and 2D (the 2D one has skew multipliers on self-conjugate modes, which act by their real part)."""
+    if case == "viscoelastic":
+        h = profile()
+        s = setup(h, Viscoelastic.standard_linear_solid(E0=1.0, E_inf=10.0, tau=1.0, nu=0.5), 0.5, (0.1 / q0_of(h),))
+    else:
+        h = profile() if case == "friction-1d" else profile(64, dim=2, cutoff=8)
+        s = setup(h, Elastic(1.0, 0.3), 0.05, friction=0.5)
+    args = dict(s.solver_args, tol=1e-10)
+    reference = solve_coupled(s._symmetric, s.body.coupling, s.values, **args)
+    state = solve_splitting(fourier_multiplier(s.body.compliance, s.body.coupling), s.values, **args)
+    assert reference.converged and state.converged and state.residual <= 1e-10
+    assert np.linalg.norm(state.pressure - reference.pressure) / np.linalg.norm(reference.pressure) < 1e-6
+    assert state.penetration == pytest.approx(reference.penetration, rel=1e-6)
+
+
+def test_penetration_control_matches_load_control():
+    """Given the approach a load-controlled solve found, the penetration-controlled solve returns its load."""
+    h = profile(512)
+    s = setup(h, GLASSY_1000, 0.5, (1e-3 / q0_of(h),))
+    multiplier = fourier_multiplier(s.body.compliance, s.body.coupling)
+    loaded = solve_splitting(multiplier, s.values, mean_pressure=0.5, tol=1e-10)
+    pushed = solve_splitting(multiplier, s.values, penetration=loaded.penetration, tol=1e-10)
+    assert loaded.converged and pushed.converged
+    assert pushed.mean_pressure == pytest.approx(0.5, rel=1e-5)
+    assert np.linalg.norm(pushed.pressure - loaded.pressure) / np.linalg.norm(loaded.pressure) < 1e-5
+
+
+@pytest.mark.parametrize("max_iter", [3, 20])
+def test_unconverged_is_reported_not_hidden(max_iter):
+    h = profile()
+    with pytest.raises(contactlib.ConvergenceError, match="residual"):
+        contactlib.solve(h, material=GLASSY_1000, mean_pressure=0.5, sliding_velocity=1e-3 / q0_of(h), tol=1e-8,
+                         max_iter=max_iter)
+
+
+def test_dispatch_rule():
+    """Only a loss-dominated viscoelastic factor goes here directly: E_inf/E0 = 10 stays with the coupled solver."""
+    h = profile()
+    soft = setup(h, Viscoelastic.standard_linear_solid(E0=1.0, E_inf=10.0, tau=1.0, nu=0.5), 0.5, (1.0 / q0_of(h),))
+    hard = setup(h, GLASSY_1000, 0.5, (1e-3 / q0_of(h),))
+    assert not loss_dominated(soft.body.factor) and loss_dominated(hard.body.factor)
+    assert not loss_dominated(None)
+
+
+def test_stalled_coupled_solve_falls_back(monkeypatch):
+    """With the direct dispatch switched off, the coupled solver stalls on a loss-dominated scene and solve falls
+    back to the splitting, which converges."""
+    from contactlib.solvers import splitting
+
+    monkeypatch.setattr(splitting, "SPLIT_ABOVE", np.inf)
+    h = profile()
+    out = contactlib.solve(h, material=GLASSY_1000, mean_pressure=0.5, sliding_velocity=1e-2 / q0_of(h), tol=1e-8)
+    assert out.attrs["solver"] == "douglas-rachford"
+    assert out.attrs["converged"] == 1 and float(out.residual) <= 1e-8
