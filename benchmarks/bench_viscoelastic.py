@@ -8,8 +8,8 @@ number to ``--json``:
    middle of the band by default), over the elastic solve of the same surface at the relaxed modulus E0,
    each at the mean pressure that gives ``--contact`` (10 % and 50 %) elastically. Interleaved repeats,
    medians; iterations and outer iterations reported.
-2. **sweep**: ``--sweep-speeds`` speeds log-spaced over ``zeta`` 1e-3..1e3, walked upwards with each solve
-   warm-started from the last (as the ``friction_speed`` study does), over one elastic solve.
+2. **sweep**: ``--sweep-speeds`` speeds log-spaced over ``zeta`` 1e-3..1e3, walked upwards twice: each solve
+   warm-started from the last, and each cold (as the ``friction_speed`` study does), over one elastic solve.
 
 Run ``python benchmarks/bench_viscoelastic.py --help``.
 """
@@ -113,17 +113,21 @@ def main(argv=None) -> int:
     p = load_for(h, 0.1)
     zetas = np.logspace(-3, 3, args.sweep_speeds)
     t_el, _ = timed(lambda: contactlib.solve(h, E=1.0, nu=0.5, mean_pressure=p, tol=args.tol), args.repeats)
-    t0 = time.perf_counter()
-    warm = None
-    for zeta in zetas:
-        out = contactlib.solve(h, material=material, mean_pressure=p, sliding_velocity=(zeta / (2 * np.pi), 0.0),
-                               tol=args.tol, initial_pressure=warm)
-        warm = out.pressure.values
-    t_sweep = time.perf_counter() - t0
-    sweep = {"n": args.sweep_size, "speeds": args.sweep_speeds, "sweep_s": t_sweep, "elastic_s": t_el,
-             "ratio": t_sweep / t_el}
-    print(f"\n# speed sweep: {args.sweep_speeds} speeds, zeta 1e-3..1e3, warm-started, {args.sweep_size}^2 at 10 % "
-          f"contact: {t_sweep:.2f} s = {sweep['ratio']:.1f}x one elastic solve ({t_el:.3f} s)")
+    walks = {}
+    for walk in ("warm", "cold"):  # warm: each speed from the last one's pressure; cold: each from scratch
+        t0, warm, iterations = time.perf_counter(), None, 0
+        for zeta in zetas:
+            out = contactlib.solve(h, material=material, mean_pressure=p, sliding_velocity=(zeta / (2 * np.pi), 0.0),
+                                   tol=args.tol, initial_pressure=warm)
+            warm = out.pressure.values if walk == "warm" else None
+            iterations += int(out.iterations)
+        walks[walk] = (time.perf_counter() - t0, iterations)
+    sweep = {"n": args.sweep_size, "speeds": args.sweep_speeds, "elastic_s": t_el,
+             **{f"{w}_s": t for w, (t, _) in walks.items()}, **{f"{w}_iterations": i for w, (_, i) in walks.items()},
+             **{f"{w}_ratio": t / t_el for w, (t, _) in walks.items()}}
+    for walk, (t, its) in walks.items():
+        print(f"\n# speed sweep ({walk}): {args.sweep_speeds} speeds, zeta 1e-3..1e3, {args.sweep_size}^2 at 10 % "
+              f"contact: {t:.2f} s = {t / t_el:.1f}x one elastic solve ({t_el:.3f} s), {its} iterations")
     if args.json:
         args.json.write_text(json.dumps({"host": info, "steady": rows, "sweep": sweep}, indent=1))
     return 0

@@ -1,9 +1,11 @@
 """The ``friction_speed`` study: the hysteretic friction coefficient and the contact area of a 2D rough
 surface sliding on a standard linear solid, against ``zeta = V tau q0`` (the bell-shaped curve), for
 several ``E_inf / E0`` and seeds. The load is fixed as a fraction of the relaxed contact modulus times
-the rms slope. Each speed is solved cold: warm-started from the next slower speed, the solves took more
-iterations, not fewer (128^2, seed 0, zeta 1e-3..0.1: 1.3 s cold against 1.5 s warm at E_inf/E0 = 10,
-3.0 s against 4.1 s at 100; single-threaded, same machine), and cold points spread over the workers.
+the rms slope. Each speed is solved cold, so the points spread over the workers (72 tasks at the quick
+scale instead of one walk per seed and ratio). Warm starts from the next slower speed did not pay at the
+quick scale: 128^2, seed 0, zeta 1e-3..0.1, 1.3 s cold against 1.5 s warm at E_inf/E0 = 10, 3.0 s against
+4.1 s at 100. At 512^2 (benchmarks/bench_viscoelastic.py, 30 speeds, E_inf/E0 = 10) the cold walk took
+fewer iterations (5361 against 7643) but more time (246 s against 185 s, one run on a loaded machine).
 """
 
 from __future__ import annotations
