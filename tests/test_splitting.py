@@ -79,6 +79,20 @@ def test_near_full_contact_agrees_with_the_real_space_active_set():
     assert float(out.contact_area) == pytest.approx(float((real.pressure > 0).mean()), abs=2 / n)
 
 
+def test_real_space_active_set_does_not_claim_a_wrong_answer():
+    """At V tau q0 = 1e-3 the seed's active set on the strongly non-symmetric real-space matrix cycles, and the
+    root search on the penetration closes on a jump of the mean pressure (0.004 for a load of 0.5): it used to
+    report converged with residual 5e-17. The load error is now in the residual, and it says not converged."""
+    n = 256
+    h = profile(n)
+    length = float(h.x[1] - h.x[0]) * n
+    real = vp.solve_profile(h.values, length=length, material=GLASSY_1000, velocity=1e-3 / q0_of(h),
+                            mean_pressure=0.5, tol=1e-10)
+    assert abs(real.mean_pressure - 0.5) > 0.1  # the jump: the method cannot carry this load here
+    assert not real.converged
+    assert real.residual == pytest.approx(abs(real.mean_pressure - 0.5) / 0.5, rel=1e-9)
+
+
 @pytest.mark.parametrize("case", ["viscoelastic", "friction-1d", "friction-2d"])
 def test_agrees_with_the_coupled_solver_where_it_converges(case):
     """Same body operators, same residual: E_inf/E0 = 10 at V tau q0 = 0.1; Coulomb friction mu = 0.5, nu = 0.3 on a
