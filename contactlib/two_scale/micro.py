@@ -38,10 +38,10 @@ import numpy as np
 
 from ..grid import Grid
 from ..operators import Compliance
-from ..solvers import solve_polonsky_keer
 from ..solvers.state import contact_residual, height_scale
 from .asperities import AsperityTable
 from .interaction import PointInteraction
+from .local import WindowStack, solve_stack
 from .macro import HertzLaw, MacroState, solve_contact_compliance
 
 WINDOW_MARGIN = 1.6
@@ -76,6 +76,8 @@ class MicroState:
     converged : bool
     window : int
         Window size in nodes.
+    force_change : float
+        Last sweep's largest change of an asperity force over the largest force [1].
     """
 
     pressure: np.ndarray
@@ -90,6 +92,7 @@ class MicroState:
     residual: float
     converged: bool
     window: int
+    force_change: float = math.nan
 
 
 def hertz_pressure_field(table: AsperityTable, grid: Grid, force: np.ndarray, contact_radius: np.ndarray,
@@ -136,7 +139,8 @@ def window_size(table: AsperityTable, *, grid: Grid, contact_radius: np.ndarray)
 def solve_micro(table: AsperityTable, macro: MacroState, law: HertzLaw, E_star: float, interaction: PointInteraction, *,
                 z_top: float, total_force: float | None, tol: float, max_iter: int,
                 known_displacement: np.ndarray | None = None, known_force: np.ndarray | None = None,
-                initial_pressure: np.ndarray | None = None, local_max_iter: int = 10_000) -> MicroState:
+                initial_pressure: np.ndarray | None = None, local_max_iter: int = 10_000,
+                force_tol: float | None = None) -> MicroState:
     """Refine the macro forces into the pressure field (see the module docstring).
 
     ``known_displacement`` [length], on the grid, is a displacement of the body that does not depend on
@@ -147,7 +151,10 @@ def solve_micro(table: AsperityTable, macro: MacroState, law: HertzLaw, E_star: 
     Hertz-shaped field): the coarse correction then takes each contact's stiffness from ``P_k + G_k``,
     which only speeds the iteration up (its fixed point does not depend on it). ``initial_pressure``
     [pressure], on the grid, replaces Hertz's pressure of the macro forces as the first sweep's (a time
-    stepper's previous step: a warm start, same fixed point).
+    stepper's previous step: a warm start, same fixed point). ``force_tol`` [1], when given, replaces the
+    stop on the field change ``tol``: the sweeps stop once no asperity force changed by more than
+    ``force_tol`` times the largest force (and, under load control, the total is within ``force_tol``);
+    the local solves then run at ``LOCAL_TOL_FACTOR * force_tol``.
 
     Raises
     ------
@@ -162,7 +169,8 @@ def solve_micro(table: AsperityTable, macro: MacroState, law: HertzLaw, E_star: 
             return _solve_in_windows(table, macro, law, E_star, interaction, window, z_top=z_top,
                                      total_force=total_force, tol=tol, max_iter=max_iter,
                                      known_displacement=known_displacement, known_force=known_force,
-                                     initial_pressure=initial_pressure, local_max_iter=local_max_iter)
+                                     initial_pressure=initial_pressure, local_max_iter=local_max_iter,
+                                     force_tol=force_tol)
         except _WindowTooSmall:  # a contact grew past the macro step's estimate: larger windows
             if window >= table.grid.shape[0]:
                 raise ValueError("mean_pressure/penetration: a local contact fills its whole window") from None
@@ -177,90 +185,109 @@ def _solve_in_windows(table: AsperityTable, macro: MacroState, law: HertzLaw, E_
                       interaction: PointInteraction, window: int, *, z_top: float, total_force: float | None,
                       tol: float, max_iter: int, known_displacement: np.ndarray | None,
                       known_force: np.ndarray | None, initial_pressure: np.ndarray | None,
-                      local_max_iter: int) -> MicroState:
-    """:func:`solve_micro` with windows of ``window`` nodes per side."""
+                      local_max_iter: int, force_tol: float | None = None) -> MicroState:
+    """:func:`solve_micro` with windows of ``window`` nodes per side, all solved together on a stack
+    (:mod:`.local`): the arrays ``(N, w, w)`` hold every asperity's window."""
     grid, heights = table.grid, table.heights
     if known_displacement is not None:  # the same problem on shifted heights
         heights = heights - np.asarray(known_displacement, dtype=float)
     h = grid.spacing[0]
     dA = h * h
     radius = law.contact_radius(macro.local_penetration)
-    wgrid = Grid((window, window), (window * h, window * h))
     # zero-padded windows for either kind of surface: their kernel decays like the global one, so the lagged
     # part u_all - K_w p_k is the small, smooth field of the far images (a periodic window's zero-mean shift
     # would be a large self-coupling the Jacobi sweep lags by one iteration, and oscillates on)
-    local_op = Compliance(wgrid, E_star=E_star, periodic=False)
+    stack = WindowStack(window, h, E_star)
     global_op = Compliance(grid, E_star=E_star, periodic=table.periodic)
     footprint = table.footprint_radius
-    windows = [_window(table, grid, k, window) for k in range(table.count)]
-    masks = [(dx[:, None] ** 2 + dy[None, :] ** 2) < footprint[k] ** 2 for k, (_, _, dx, dy) in enumerate(windows)]
+    nodes_of, masks = _window_stack(table, grid, window)
+    height_stack = heights.ravel()[nodes_of]
     pressure = hertz_pressure_field(table, grid, macro.force, radius, window) if initial_pressure is None else \
         np.array(initial_pressure, dtype=float)
     delta = macro.penetration
-    local_tol = LOCAL_TOL_FACTOR * tol
-    change, it, local_iterations = np.inf, 0, 0
-    force = np.zeros(table.count)
-    own_displacement = {}  # K_w p_k of each asperity's current pressure, from its last local solve
+    local_tol = LOCAL_TOL_FACTOR * (tol if force_tol is None else force_tol)
+    change, force_change, it, local_iterations = np.inf, np.inf, 0, 0
+    own_displacement = None  # K_w p_k of each asperity's current pressure, from its last local solve
     for it in range(1, max_iter + 1):
         displacement = global_op(pressure)
         body_level = z_top - delta  # undeformed body surface
-        patches, solved, old_force, new_force = {}, {}, np.zeros(table.count), np.zeros(table.count)
-        for k, ((rows, cols, _, _), mask) in enumerate(zip(windows, masks)):
-            block = np.ix_(rows, cols)
-            own = pressure[block] * mask
-            old_force[k] = float(own.sum()) * dA
-            if old_force[k] > 0:
-                own_part = own_displacement[k] if k in own_displacement else local_op(own)
-                external = displacement[block] - own_part
-            else:
-                external = displacement[block]
-            local_heights = heights[block] - external
-            inside = local_heights[mask]
-            if inside.max() <= body_level:  # not touching
-                continue
-            local_heights = np.where(mask, local_heights, inside.min() - (inside.max() - inside.min()))
-            local_pen = float(local_heights.max() - body_level)
-            state = solve_polonsky_keer(local_op, local_heights, penetration=local_pen, tol=local_tol,
-                                        max_iter=local_max_iter, initial_pressure=own if old_force[k] > 0 else None)
-            local_iterations += state.iterations
-            p_local = np.where(mask, state.pressure, 0.0)
-            _check_inside(p_local, mask, k)
-            patches[k] = p_local
-            solved[k] = state.displacement  # = K_w p_local: the pressure is zero off the footprint
-            new_force[k] = float(p_local.sum()) * dA
-        scale, step = _coarse_correction(interaction, law, E_star, old_force, new_force, total_force, known_force)
+        own = pressure.ravel()[nodes_of] * masks
+        old_force = own.sum(axis=(1, 2)) * dA
+        if own_displacement is None:
+            own_displacement = stack(own)
+        local_heights = height_stack - (displacement.ravel()[nodes_of] - own_displacement)
+        top = np.where(masks, local_heights, -np.inf).max(axis=(1, 2))
+        low = np.where(masks, local_heights, np.inf).min(axis=(1, 2))
+        touching = np.flatnonzero(top > body_level)
+        patches = np.zeros_like(own)
+        solved = np.zeros_like(own)
+        if touching.size:
+            m = masks[touching]
+            # off the footprint the window is lowered below the footprint's lowest point: no contact there
+            lowered = (low - (top - low))[touching][:, None, None]
+            local = np.where(m, local_heights[touching], lowered)
+            scale = np.sqrt(np.mean((local - local.mean(axis=(1, 2), keepdims=True)) ** 2, axis=(1, 2)))
+            warm = old_force[touching] > 0
+            interference = local - body_level
+            start = np.where(warm[:, None, None], own[touching],
+                             np.maximum(interference, 0.0) / stack.self_compliance)
+            p_local, u_local, iterations, _ = solve_stack(stack, interference, tol=local_tol,
+                                                          max_iter=local_max_iter, initial_pressure=start, scale=scale)
+            local_iterations += int(iterations.sum())
+            p_local = np.where(m, p_local, 0.0)
+            _check_inside(p_local, m, touching)
+            patches[touching] = p_local
+            solved[touching] = u_local  # = K_w p_local: the pressure is zero off the footprint
+        new_force = patches.sum(axis=(1, 2)) * dA
+        factor, step = _coarse_correction(interaction, law, E_star, old_force, new_force, total_force, known_force)
         delta += step
-        new = np.zeros_like(pressure)
-        own_displacement = {}
-        for k, p_local in patches.items():
-            rows, cols, _, _ = windows[k]
-            new[np.ix_(rows, cols)] += p_local * scale[k]
-            own_displacement[k] = solved[k] * scale[k]  # linear: no convolution needed next sweep
+        patches *= factor[:, None, None]
+        own_displacement = solved * factor[:, None, None]  # linear: no convolution needed next sweep
+        new = np.bincount(nodes_of[masks], weights=patches[masks], minlength=pressure.size).reshape(grid.shape)
         norm = float(np.linalg.norm(new))
         change = float(np.linalg.norm(new - pressure)) / norm if norm > 0 else 0.0
+        new_force *= factor
+        largest = float(np.max(new_force)) if new_force.size else 0.0
+        force_change = float(np.max(np.abs(new_force - old_force))) / largest if largest > 0 else 0.0
         pressure = new
         force_error = 0.0
         if total_force is not None and total_force > 0:
             force_error = abs(float(pressure.sum()) * dA - total_force) / total_force
-        if change <= tol and force_error <= tol:
+        if force_tol is None:
+            if change <= tol and force_error <= tol:
+                break
+        elif force_change <= force_tol and force_error <= force_tol:
             break
     displacement = global_op(pressure)
     gap = displacement + z_top - heights - delta
-    for k, (rows, cols, _, _) in enumerate(windows):
-        force[k] = float(np.sum(pressure[np.ix_(rows, cols)] * masks[k])) * dA
-    nodes = np.array([np.count_nonzero(pressure[np.ix_(r, c)] * m > 0) for (r, c, _, _), m in zip(windows, masks)])
+    on_footprints = pressure.ravel()[nodes_of] * masks
+    force = on_footprints.sum(axis=(1, 2)) * dA
+    nodes = np.count_nonzero(on_footprints > 0, axis=(1, 2))
     outside = np.ones(grid.shape, dtype=bool)
-    for (rows, cols, _, _), mask in zip(windows, masks):
-        outside[np.ix_(rows, cols)] &= ~mask
+    outside.ravel()[nodes_of[masks]] = False
     if np.any(gap[outside] < 0):
         raise ValueError(
             "mean_pressure/penetration: the body reaches the surface between the asperities' footprints (the gap "
             f"there falls to {float(gap[outside].min()):.3g}): the load is beyond what separate spherical contacts "
             "carry, so the two-scale method does not apply")
     residual = contact_residual(pressure, gap, height_scale(heights))
-    converged = change <= tol
+    converged = change <= tol if force_tol is None else force_change <= force_tol
     return MicroState(pressure, displacement, gap, force, nodes, float(delta), it, local_iterations, change, residual,
-                      converged, window)
+                      converged, window, force_change)
+
+
+def _window_stack(table: AsperityTable, grid: Grid, window: int) -> tuple[np.ndarray, np.ndarray]:
+    """Flat grid index of every node of every asperity's window, ``(N, w, w)``, and the mask of the nodes
+    inside its footprint."""
+    n = grid.shape[1]
+    footprint = table.footprint_radius
+    nodes_of = np.empty((table.count, window, window), dtype=np.intp)
+    masks = np.empty((table.count, window, window), dtype=bool)
+    for k in range(table.count):
+        rows, cols, dx, dy = _window(table, grid, k, window)
+        nodes_of[k] = rows[:, None] * n + cols[None, :]
+        masks[k] = (dx[:, None] ** 2 + dy[None, :] ** 2) < footprint[k] ** 2
+    return nodes_of, masks
 
 
 def _coarse_correction(interaction: PointInteraction, law: HertzLaw, E_star: float, old_force: np.ndarray,
@@ -283,22 +310,25 @@ def _coarse_correction(interaction: PointInteraction, law: HertzLaw, E_star: flo
     return scale, step
 
 
-def _check_inside(p_local: np.ndarray, mask: np.ndarray, k: int) -> None:
+def _check_inside(p_local: np.ndarray, mask: np.ndarray, which: np.ndarray) -> None:
     """Refuse a local contact that reaches the footprint's edge (a node in contact next to a node outside);
-    one that reaches the window's border inside the footprint asks for larger windows."""
+    one that reaches the window's border inside the footprint asks for larger windows. Stacks ``(M, w, w)``;
+    ``which`` numbers the asperities of the stack."""
     contact = p_local > 0
     border = np.zeros_like(contact)
-    border[0] = border[-1] = True
     border[:, 0] = border[:, -1] = True
+    border[:, :, 0] = border[:, :, -1] = True
     outside = ~mask
     edge = np.zeros_like(contact)
-    edge[1:] |= outside[:-1]
-    edge[:-1] |= outside[1:]
     edge[:, 1:] |= outside[:, :-1]
     edge[:, :-1] |= outside[:, 1:]
+    edge[:, :, 1:] |= outside[:, :, :-1]
+    edge[:, :, :-1] |= outside[:, :, 1:]
     if np.any(contact & border & ~edge):
         raise _WindowTooSmall()
-    if np.any(contact & edge):
+    reached = np.flatnonzero(np.any(contact & edge, axis=(1, 2)))
+    if reached.size:
         raise ValueError(
-            f"mean_pressure/penetration: the contact of asperity {k} reaches the edge of its footprint: "
-            "the load is beyond what separate spherical contacts carry, so the two-scale method does not apply")
+            f"mean_pressure/penetration: the contact of asperity {int(which[reached[0]])} reaches the edge of its "
+            "footprint: the load is beyond what separate spherical contacts carry, so the two-scale method does not "
+            "apply")
