@@ -294,9 +294,9 @@ def _coarse_correction(interaction: PointInteraction, law: HertzLaw, E_star: flo
                        new_force: np.ndarray, total_force: float | None,
                        known_force: np.ndarray | None = None) -> tuple[np.ndarray, float]:
     """Scale factors of the new asperity pressures and the approach step from the macro model (step 4)."""
-    # Hertz stiffness of each new contact, dF/dd = 2 E* a with a = (3 F R / (4 E*))^(1/3)
+    # the single-asperity law's stiffness dF/dd of each new contact (Hertz: 2 E* a, a = (3 F R / (4 E*))^(1/3))
     hertz_force = new_force if known_force is None else np.where(new_force > 0, new_force + known_force, 0.0)
-    slope = 2.0 * E_star * np.cbrt(3.0 * np.maximum(hertz_force, 0.0) * law.radius / (4.0 * E_star))
+    slope = law.stiffness(hertz_force)
     rhs = -interaction(new_force - old_force)
     correction = solve_contact_compliance(interaction, slope, rhs)
     step = 0.0
