@@ -96,19 +96,19 @@ class MicroState:
 
 
 def hertz_pressure_field(table: AsperityTable, grid: Grid, force: np.ndarray, contact_radius: np.ndarray,
-                         window: int) -> np.ndarray:
+                         window: int, stack: tuple[np.ndarray, np.ndarray] | None = None) -> np.ndarray:
     """Hertz pressure ``p0 sqrt(1 - r^2/a^2)`` of each asperity sampled on the grid and scaled so that
-    its nodes carry the force exactly [pressure]."""
-    p = np.zeros(grid.shape)
+    its nodes carry the force exactly [pressure]. ``stack``: :func:`_window_stack`'s nodes and squared
+    distances, if at hand."""
+    nodes_of, r2 = _window_stack(table, grid, window)[::2] if stack is None else stack
     h = grid.spacing[0]
-    for k in np.flatnonzero(force > 0):
-        rows, cols, dx, dy = _window(table, grid, k, window)
-        r2 = dx[:, None] ** 2 + dy[None, :] ** 2
-        local = np.sqrt(np.clip(1.0 - r2 / contact_radius[k] ** 2, 0.0, None))
-        total = local.sum() * h * h
-        if total > 0:
-            p[np.ix_(rows, cols)] += local * force[k] / total
-    return p
+    loaded = force > 0
+    a2 = np.where(loaded, contact_radius, 1.0)[:, None, None] ** 2
+    local = np.sqrt(np.clip(1.0 - r2 / a2, 0.0, None)) * loaded[:, None, None]
+    total = local.sum(axis=(1, 2)) * h * h
+    local *= np.divide(force, total, out=np.zeros_like(total), where=total > 0)[:, None, None]
+    on = local > 0  # inside each contact disc: the discs lie in disjoint footprints
+    return np.bincount(nodes_of[on], weights=local[on], minlength=grid.shape[0] * grid.shape[1]).reshape(grid.shape)
 
 
 def _window(table: AsperityTable, grid: Grid, k: int, window: int):
@@ -200,10 +200,10 @@ def _solve_in_windows(table: AsperityTable, macro: MacroState, law: HertzLaw, E_
     stack = WindowStack(window, h, E_star)
     global_op = Compliance(grid, E_star=E_star, periodic=table.periodic)
     footprint = table.footprint_radius
-    nodes_of, masks = _window_stack(table, grid, window)
+    nodes_of, masks, r2 = _window_stack(table, grid, window)
     height_stack = heights.ravel()[nodes_of]
-    pressure = hertz_pressure_field(table, grid, macro.force, radius, window) if initial_pressure is None else \
-        np.array(initial_pressure, dtype=float)
+    pressure = hertz_pressure_field(table, grid, macro.force, radius, window, (nodes_of, r2)) \
+        if initial_pressure is None else np.array(initial_pressure, dtype=float)
     delta = macro.penetration
     local_tol = LOCAL_TOL_FACTOR * (tol if force_tol is None else force_tol)
     change, force_change, it, local_iterations = np.inf, np.inf, 0, 0
@@ -276,18 +276,18 @@ def _solve_in_windows(table: AsperityTable, macro: MacroState, law: HertzLaw, E_
                       converged, window, force_change)
 
 
-def _window_stack(table: AsperityTable, grid: Grid, window: int) -> tuple[np.ndarray, np.ndarray]:
-    """Flat grid index of every node of every asperity's window, ``(N, w, w)``, and the mask of the nodes
-    inside its footprint."""
+def _window_stack(table: AsperityTable, grid: Grid, window: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Flat grid index of every node of every asperity's window, ``(N, w, w)``, the mask of the nodes
+    inside its footprint, and their squared distances from its summit [length^2]."""
     n = grid.shape[1]
     footprint = table.footprint_radius
     nodes_of = np.empty((table.count, window, window), dtype=np.intp)
-    masks = np.empty((table.count, window, window), dtype=bool)
+    r2 = np.empty((table.count, window, window))
     for k in range(table.count):
         rows, cols, dx, dy = _window(table, grid, k, window)
         nodes_of[k] = rows[:, None] * n + cols[None, :]
-        masks[k] = (dx[:, None] ** 2 + dy[None, :] ** 2) < footprint[k] ** 2
-    return nodes_of, masks
+        r2[k] = dx[:, None] ** 2 + dy[None, :] ** 2
+    return nodes_of, r2 < footprint[:, None, None] ** 2, r2
 
 
 def _coarse_correction(interaction: PointInteraction, law: HertzLaw, E_star: float, old_force: np.ndarray,
