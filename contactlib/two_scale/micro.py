@@ -10,8 +10,8 @@ summit and aligned with the grid. Each outer iteration:
    its window is ``u_ext = u_all - K_w p_k``, with ``K_w`` the zero-padded half-space kernel on the
    window; at the fixed point ``u_ext + K_w p_k = u_all`` is exactly the full solver's displacement,
    whatever ``K_w``, and the closer ``K_w`` is to the global kernel, the faster the sweep converges;
-3. a constrained CG solve of the window alone (contactlib's own solvers), with the heights lowered by
-   ``u_ext`` and masked to the asperity's footprint, at the common rigid approach;
+3. a constrained CG solve of each window alone, with the heights lowered by ``u_ext`` and masked to the
+   asperity's footprint, at the common rigid approach: all windows at once, on a stack (:mod:`.local`);
 4. a coarse correction by the macro model: the sweep changed the forces by ``dF`` but each asperity saw
    the others' old forces; the forces' answer to that, ``(S^-1 + T) c = -T dF`` on the contacts
    (``S``: Hertz stiffness ``2 E* a`` of each, ``T``: the point-load interaction), scales each
@@ -26,7 +26,10 @@ The first ``p`` holds Hertz's pressure with the macro forces and contact radii. 
 block Jacobi sweep of the full problem; at its fixed point every local gap is the full solver's gap,
 so the answer is the full solver's up to the tolerance. It stops when the relative change of the
 whole pressure field, ``||p_new - p_old|| / ||p_new||``, and (load control) the relative force error
-are both at most ``tol``.
+are both at most ``tol``; or, given ``force_tol``, when no asperity force changed by more than
+``force_tol`` of the largest. A sweep divides the force error by 10-20 on the fields measured (1000
+asperities, coverage 0.05: 5e-3 from the macro step, then 6e-4, 3e-5, 2e-6), so the forces of the
+last sweep are well within the change that stopped it.
 """
 
 from __future__ import annotations
