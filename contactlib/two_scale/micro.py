@@ -47,9 +47,9 @@ from .interaction import PointInteraction
 from .local import WindowStack, solve_stack
 from .macro import HertzLaw, MacroState, solve_contact_compliance
 
-WINDOW_MARGIN = 1.6
+WINDOW_MARGIN = 1.15
 """Window half-width in macro contact radii (the largest), plus :data:`WINDOW_PAD` nodes."""
-WINDOW_PAD = 4
+WINDOW_PAD = 2
 LOCAL_TOL_FACTOR = 0.1
 """Local solves run at this fraction of the outer tolerance, so the outer change measures the coupling."""
 
