@@ -202,7 +202,6 @@ def _solve_in_windows(table: AsperityTable, macro: MacroState, law: HertzLaw, E_
     # would be a large self-coupling the Jacobi sweep lags by one iteration, and oscillates on)
     stack = WindowStack(window, h, E_star)
     global_op = Compliance(grid, E_star=E_star, periodic=table.periodic)
-    footprint = table.footprint_radius
     nodes_of, masks, r2 = _window_stack(table, grid, window)
     height_stack = heights.ravel()[nodes_of]
     pressure = hertz_pressure_field(table, grid, macro.force, radius, window, (nodes_of, r2)) \
