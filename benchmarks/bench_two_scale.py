@@ -9,7 +9,8 @@ resolution"). Displacement control at that approach for all three, so the total 
 
 * **reference**: ``contactlib.solve(..., tol=--ref-tol)`` (1e-8);
 * **full**: ``contactlib.solve(..., tol=--full-tol)`` (1e-4, far below 1 % force error), timed;
-* **two-scale**: ``contactlib.two_scale.solve(..., tol=--two-scale-tol)`` (1e-3 on the pressure change), timed;
+* **two-scale**: ``contactlib.two_scale.solve(..., tol=--two-scale-tol)`` (1e-3 on the pressure change), or
+  with ``--two-scale-force-tol``, ``force_tol=`` (the stop on the change of the asperity forces), timed;
 * **macro**: ``scale="macro", fields=False``, timed.
 
 Errors against the reference: total force, per-asperity force (max over asperities of ``|P_k - P_k^ref|``
@@ -55,7 +56,7 @@ def run_case(count: int, coverage: float, args) -> dict:
         case.update(compare_methods(count=count, coverage=coverage, seed=args.seed,
                                     nodes_per_radius=args.nodes_per_radius, full_tol=args.full_tol,
                                     two_scale_tol=args.two_scale_tol, repeats=args.repeats, E=E, nu=NU,
-                                    tol=args.ref_tol))
+                                    tol=args.ref_tol, two_scale_force_tol=args.two_scale_force_tol))
     except (ValueError, RuntimeError) as err:  # a refused scene or a non-convergence is a result too
         case["skipped"] = f"{type(err).__name__}: {err}"
     return case
@@ -69,6 +70,9 @@ def main(argv=None) -> None:
     parser.add_argument("--ref-tol", type=float, default=1e-8)
     parser.add_argument("--full-tol", type=float, default=1e-4)
     parser.add_argument("--two-scale-tol", type=float, default=1e-3)
+    parser.add_argument("--two-scale-force-tol", type=float, default=None,
+                        help="run the two-scale method with force_tol= (stop on the asperity forces' change) "
+                             "instead of tol=--two-scale-tol")
     parser.add_argument("--repeats", type=int, default=3)
     parser.add_argument("--max-nodes", type=int, default=4096)
     parser.add_argument("--seed", type=int, default=0)

@@ -349,3 +349,45 @@ def test_study_point_is_labelled_and_accurate():
     assert row["two_scale_asperity_force_error"] < 1e-2 and row["full_asperity_force_error"] < 1e-3
     assert row["macro_asperity_force_error"] < 5e-2 and row["in_contact"] == 10
     assert all(row[f"{m}_time"] > 0 for m in ("macro", "two_scale", "full"))
+
+
+def test_force_tolerance_stops_within_it_of_the_full_solver():
+    """``force_tol``: the sweeps stop on the change of the asperity forces; one sweep from the macro
+    forces already lands within the target of the full solver (300 sagging asperities, coverage 0.2)."""
+    field = ts.random_asperity_field(300, coverage=0.2, nodes_per_spacing=24, seed=0)
+    table = ts.asperity_table(field)
+    approach = float(field.max()) - 0.6 * float(np.mean(table.summit_height))
+    full = contactlib.solve(field, E=E, nu=NU, penetration=approach)
+    reference = ts.asperity_forces(full.pressure.values, table)
+    for force_tol in (1e-2, 1e-4):
+        two = ts.solve(field, E=E, nu=NU, penetration=approach, force_tol=force_tol)
+        assert two.attrs["micro_force_change"] <= force_tol and two.attrs["force_tol"] == force_tol
+        assert np.max(np.abs(two.force.values - reference)) < force_tol * reference.max()
+    with pytest.raises(ValueError, match="force_tol"):
+        ts.solve(field, E=E, nu=NU, penetration=approach, force_tol=0.0)
+
+
+def test_stacked_local_solves_match_the_single_window_solver():
+    """The micro scale's vectorised constrained CG (all windows at once) against contactlib's own
+    Polonsky-Keer solver on each window alone: caps of different radii, offsets and approaches."""
+    from contactlib.solvers import solve_polonsky_keer
+    from contactlib.two_scale.local import WindowStack, solve_stack
+
+    w, h = 24, 0.01
+    stack = WindowStack(w, h, E_STAR)
+    x = (np.arange(w) - w // 2) * h
+    rng = np.random.default_rng(1)
+    heights = []
+    for _ in range(12):
+        R, (cx, cy) = 0.5 + rng.random(), rng.random(2) * h
+        cap = -((x[:, None] - cx) ** 2 + (x[None, :] - cy) ** 2) / (2 * R)
+        heights.append(cap - cap.max())
+    approaches = 4e-4 * (1 + rng.random(12))
+    interference = np.array(heights) + approaches[:, None, None]
+    p, u, iterations, residual = solve_stack(stack, interference, tol=1e-8, max_iter=2000)
+    assert np.all(residual <= 1e-8)
+    np.testing.assert_allclose(u, stack(p), rtol=0, atol=1e-12 * np.abs(u).max())
+    for k in range(12):
+        single = solve_polonsky_keer(stack.operator, heights[k], penetration=approaches[k], tol=1e-8)
+        assert p[k].sum() == pytest.approx(single.pressure.sum(), rel=1e-6)
+        assert np.max(np.abs(p[k] - single.pressure)) < 1e-5 * single.pressure.max()

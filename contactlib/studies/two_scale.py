@@ -67,9 +67,11 @@ def _errors(forces, contact_area, pressure, reference, reference_forces) -> dict
 
 
 def compare_methods(*, count: int, coverage: float, seed: int, nodes_per_radius: float, full_tol: float,
-                    two_scale_tol: float, repeats: int, E: float, nu: float, tol: float) -> dict:
+                    two_scale_tol: float, repeats: int, E: float, nu: float, tol: float,
+                    two_scale_force_tol: float | None = None) -> dict:
     """Errors and median wall times of the macro step, the two-scale method and the full solver on one
-    field (see the module docstring); ``tol``: the reference solve's."""
+    field (see the module docstring); ``tol``: the reference solve's. ``two_scale_force_tol``: run the
+    two-scale method with ``force_tol=`` (the stop on the asperity forces) instead of ``tol=two_scale_tol``."""
     nps = nodes_per_spacing(coverage, nodes_per_radius)
     field = two_scale.random_asperity_field(int(count), coverage=coverage, nodes_per_spacing=nps, seed=int(seed))
     table = two_scale.asperity_table(field)
@@ -78,7 +80,8 @@ def compare_methods(*, count: int, coverage: float, seed: int, nodes_per_radius:
     reference_forces = two_scale.asperity_forces(reference.pressure.values, table)
     solvers = {
         "macro": lambda: two_scale.solve(field, E=E, nu=nu, penetration=approach, scale="macro", fields=False),
-        "two_scale": lambda: two_scale.solve(field, E=E, nu=nu, penetration=approach, tol=two_scale_tol),
+        "two_scale": lambda: two_scale.solve(field, E=E, nu=nu, penetration=approach, tol=two_scale_tol,
+                                             force_tol=two_scale_force_tol),
         "full": lambda: solve(field, E=E, nu=nu, penetration=approach, tol=full_tol),
     }
     outputs = {name: run() for name, run in solvers.items()}  # warm-up: FFT plans, JIT

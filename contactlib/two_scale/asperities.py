@@ -39,6 +39,9 @@ class AsperityTable:
         The heights on a grid when the input carried one (DataArray), for the micro scale.
     grid : Grid or None
         That grid.
+    footprint : ndarray or None
+        Footprint radii [length] of asperities that are not spherical caps (a tabulated law's support);
+        None: the spherical caps' own.
     """
 
     centers: np.ndarray
@@ -48,6 +51,7 @@ class AsperityTable:
     periodic: bool
     heights: np.ndarray | None = None
     grid: Grid | None = None
+    footprint: np.ndarray | None = None
 
     @property
     def count(self) -> int:
@@ -55,7 +59,10 @@ class AsperityTable:
 
     @property
     def footprint_radius(self) -> np.ndarray:
-        """Radius of each cap's intersection with the base [length]: ``sqrt(z (2R - z))``."""
+        """Radius of each cap's intersection with the base [length]: ``sqrt(z (2R - z))`` (or the
+        :attr:`footprint` given)."""
+        if self.footprint is not None:
+            return self.footprint
         z, R = self.summit_height, self.radius
         return np.sqrt(z * (2 * R - z))
 
@@ -84,7 +91,8 @@ def _column(source, names: tuple[str, ...], label: str) -> np.ndarray:
     raise ValueError(f"asperities: no {label!r} in the asperity table (looked for {', '.join(names)})")
 
 
-def asperity_table(asperities, *, length: float | None = None, periodic: bool | None = None) -> AsperityTable:
+def asperity_table(asperities, *, length: float | None = None, periodic: bool | None = None,
+                   footprint_radius: float | None = None) -> AsperityTable:
     """Read and validate the asperity table.
 
     Parameters
@@ -97,6 +105,10 @@ def asperity_table(asperities, *, length: float | None = None, periodic: bool | 
         Window size [length]; required for a Dataset without ``attrs['length']``.
     periodic : bool, optional
         Default: the input's ``attrs['periodic']``, else True.
+    footprint_radius : float, optional
+        Asperities that are not spherical caps (a tabulated law's shape): their common footprint radius
+        [length]; ``radius`` is then not used (any positive value) and ``summit_height`` only needs to be
+        positive.
 
     Raises
     ------
@@ -153,7 +165,8 @@ def asperity_table(asperities, *, length: float | None = None, periodic: bool | 
     bad = np.flatnonzero(~(np.isfinite(radius) & (radius > 0)))
     if bad.size:
         raise ValueError(f"radius must be finite and > 0: asperity {bad.tolist()[:5]} has {radius[bad][:5].tolist()}")
-    bad = np.flatnonzero(~(np.isfinite(summit) & (summit > 0) & (summit <= radius)))
+    cap = summit <= radius if footprint_radius is None else True
+    bad = np.flatnonzero(~(np.isfinite(summit) & (summit > 0) & cap))
     if bad.size:
         raise ValueError(f"summit_height must lie in (0, radius] (a cap above the base): asperity "
                          f"{bad.tolist()[:5]} has {summit[bad][:5].tolist()}")
@@ -162,12 +175,17 @@ def asperity_table(asperities, *, length: float | None = None, periodic: bool | 
         centers = centers % window
     elif np.any(centers < 0) or np.any(centers > window):
         raise ValueError("center_x, center_y: a non-periodic window holds its asperities inside [0, length]")
-    table = AsperityTable(centers, radius, summit, window, bool(periodic), heights, grid)
-    _check_separate(table)
+    footprint = None
+    if footprint_radius is not None:
+        if not (np.isfinite(footprint_radius) and footprint_radius > 0):
+            raise ValueError(f"footprint_radius must be finite and > 0, got {footprint_radius!r}")
+        footprint = np.full(n, float(footprint_radius))
+    table = AsperityTable(centers, radius, summit, window, bool(periodic), heights, grid, footprint)
+    check_separate(table)
     return table
 
 
-def _check_separate(table: AsperityTable) -> None:
+def check_separate(table: AsperityTable) -> None:
     """Refuse footprints that intersect: the method needs each cap to be its own sphere."""
     footprint = table.footprint_radius
     k, l, r = table.neighbour_pairs(2 * float(footprint.max()))

@@ -69,6 +69,11 @@ class HertzLaw:
     def __init__(self, radius: np.ndarray, E_star: float):
         self.radius, self.E_star = np.asarray(radius, dtype=float), float(E_star)
 
+    @property
+    def length_scale(self) -> float:
+        """A length of the law [length]: the largest radius."""
+        return float(np.max(self.radius))
+
     def force(self, d: np.ndarray) -> np.ndarray:
         dp = np.maximum(d, 0.0)
         return 4.0 / 3.0 * self.E_star * np.sqrt(self.radius) * dp**1.5
@@ -78,6 +83,10 @@ class HertzLaw:
 
     def contact_radius(self, d: np.ndarray) -> np.ndarray:
         return np.sqrt(self.radius * np.maximum(d, 0.0))
+
+    def stiffness(self, force: np.ndarray) -> np.ndarray:
+        """``dP/dd = 2 E* a`` at the force ``P``, ``a = (3 P R / (4 E*))^(1/3)`` [force/length]."""
+        return 2.0 * self.E_star * np.cbrt(3.0 * np.maximum(force, 0.0) * self.radius / (4.0 * self.E_star))
 
 
 def solve_macro(table: AsperityTable, interaction: PointInteraction, law: HertzLaw, *,
@@ -190,7 +199,7 @@ def solve_contact_compliance(interaction: PointInteraction, slope: np.ndarray, r
 def _uncoupled_approach(offsets: np.ndarray, law: HertzLaw, total_force: float) -> float:
     """``delta`` with ``sum_k f_k(delta + offsets_k) = total_force`` and no interaction (bisection)."""
     lo = 0.0
-    scale = max(float(np.ptp(offsets)), float(np.max(law.radius)) * 1e-6)
+    scale = max(float(np.ptp(offsets)), law.length_scale * 1e-6)
     hi = scale
     while float(law.force(hi + offsets).sum()) < total_force:
         hi *= 2.0

@@ -1,0 +1,135 @@
+"""The micro scale's local problems, all windows at once: one stacked FFT convolution per step for every
+asperity, and Polonsky & Keer's constrained conjugate gradients vectorised over the stack.
+
+Every window has the same size and spacing, hence the same zero-padded half-space kernel (the
+multiplier of :class:`contactlib.operators.Compliance` with ``periodic=False`` on the window's grid):
+the stack of ``M`` windows is convolved by one batched real FFT of shape ``(M, 2w, 2w)``. Solving the
+windows one by one cost a Python call, two small FFTs and a few fused sweeps per iteration and window;
+on 10^3 asperities that overhead, not the arithmetic, was a third of the two-scale time.
+
+The iteration is :func:`contactlib.solvers.solve_polonsky_keer`'s under displacement control without the
+preconditioner (Polonsky & Keer 1999: CG on the contact set, projection on ``p >= 0``, re-entry of
+interpenetrating points with a restart of the conjugacy), with its residual
+(:func:`contactlib.solvers.contact_residual`) per window. A window leaves the stack once its residual is
+at most ``tol``, so the work follows each window's own iterations.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import scipy.fft as sfft
+
+from ..grid import Grid
+from ..operators import Compliance
+
+
+BLOCK = 1024
+"""Windows per batched FFT: bounds the padded spectra's memory (10^4 windows of 44^2 would take 160 MB)."""
+
+
+class WindowStack:
+    """Zero-padded half-space compliance of ``w x w`` windows of spacing ``h``, applied to a stack.
+
+    Parameters
+    ----------
+    window : int
+        Nodes per side.
+    spacing : float
+        Node spacing [length].
+    E_star : float
+        Contact modulus [pressure].
+    """
+
+    def __init__(self, window: int, spacing: float, E_star: float):
+        self.window = int(window)
+        grid = Grid((self.window, self.window), (self.window * spacing, self.window * spacing))
+        self.operator = Compliance(grid, E_star=E_star, periodic=False)
+        self.work_shape = self.operator.work_shape
+        # Compliance folds the inverse transform's 1/N into its multiplier; scipy's irfft2 divides by N again
+        self._multiplier = np.asarray(self.operator.multiplier) * float(np.prod(self.work_shape))
+        self.self_compliance = self.operator.self_compliance()
+
+    def __call__(self, pressure: np.ndarray) -> np.ndarray:
+        """Displacement [length] on each window of the stack ``(M, w, w)`` of pressures [pressure]."""
+        out = np.empty_like(pressure)
+        for start in range(0, pressure.shape[0], BLOCK):  # in blocks: the padded spectra of 10^4 windows
+            block = slice(start, start + BLOCK)
+            spectrum = sfft.rfft2(pressure[block], s=self.work_shape)
+            spectrum *= self._multiplier
+            out[block] = sfft.irfft2(spectrum, s=self.work_shape)[:, : self.window, : self.window]
+        return out
+
+
+def solve_stack(stack: WindowStack, interference: np.ndarray, *, tol: float, max_iter: int,
+                initial_pressure: np.ndarray | None = None, scale: np.ndarray | None = None):
+    """Frictionless contact of every window of the stack at a fixed rigid approach.
+
+    Parameters
+    ----------
+    stack : WindowStack
+    interference : ndarray, shape (M, w, w)
+        Rigid interference ``s`` [length]: the gap is ``K p - s``; positive where the rigid surface would
+        enter the body.
+    tol : float
+        Target of each window's :func:`contactlib.solvers.contact_residual`.
+    max_iter : int
+        Iterations at most per window.
+    initial_pressure : ndarray, optional
+        Warm start [pressure]; default ``max(s, 0)`` over the window's own compliance.
+    scale : ndarray, shape (M,), optional
+        Each window's height scale of the residual [length] (default: rms of ``s``).
+
+    Returns
+    -------
+    pressure, displacement : ndarray, shape (M, w, w)
+        [pressure], ``K p`` [length].
+    iterations : ndarray of int, shape (M,)
+    residual : ndarray, shape (M,)
+    """
+    s = np.asarray(interference, dtype=float)
+    m = s.shape[0]
+    if scale is None:
+        scale = np.sqrt(np.mean((s - s.mean(axis=(1, 2), keepdims=True)) ** 2, axis=(1, 2)))
+    scale = np.where(scale > 0, scale, 1.0)
+    p = np.maximum(s, 0.0) / stack.self_compliance if initial_pressure is None else \
+        np.maximum(np.asarray(initial_pressure, dtype=float), 0.0).copy()
+    pressure, displacement = np.zeros_like(s), np.zeros_like(s)
+    iterations, residual = np.zeros(m, dtype=int), np.full(m, np.inf)
+    live = np.arange(m)  # windows still iterating, and their state below
+    t = np.zeros_like(p)
+    G_old = np.ones(m)
+    restart = np.ones(m, dtype=bool)
+    per_node = float(s.shape[1] * s.shape[2])
+    for it in range(max_iter + 1):
+        u = stack(p)
+        g = u - s[live]
+        # the residual of contactlib.solvers.contact_residual, per window
+        psum = p.sum(axis=(1, 2))
+        comp = np.einsum("kij,kij->k", p, np.abs(g))
+        pen = np.maximum(-g, 0.0).sum(axis=(1, 2))
+        with np.errstate(divide="ignore", invalid="ignore"):
+            r = np.where(psum > 0, (comp + psum * pen / per_node) / (psum * scale[live]), pen / (per_node * scale[live]))
+        residual[live] = r
+        iterations[live] = it
+        done = (r <= tol) | (it == max_iter)
+        if done.any():
+            pressure[live[done]], displacement[live[done]] = p[done], u[done]
+            keep = ~done
+            live, p, g, t, G_old, restart = live[keep], p[keep], g[keep], t[keep], G_old[keep], restart[keep]
+            if live.size == 0:
+                break
+        contact = p > 0.0
+        G = np.einsum("kij,kij->k", g * contact, g)
+        beta = np.where(restart | (G_old <= 0), 0.0, G / np.where(G_old > 0, G_old, 1.0))
+        G_old = G
+        t = np.where(contact, g + beta[:, None, None] * t, 0.0)
+        kt = stack(t)
+        tkt = np.einsum("kij,kij->k", t, kt)
+        gt = np.einsum("kij,kij->k", g * contact, t)
+        tau = np.where(tkt > 0, gt / np.where(tkt > 0, tkt, 1.0), 1.0 / stack.self_compliance)
+        p = np.maximum(p - tau[:, None, None] * t, 0.0)
+        # re-entry: points off contact that interpenetrate get the pressure their overlap asks for
+        overlap = ~contact & (g < 0)
+        p = np.where(overlap, -tau[:, None, None] * g, p)
+        restart = overlap.any(axis=(1, 2))
+    return pressure, displacement, iterations, residual
