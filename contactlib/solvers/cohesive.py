@@ -60,6 +60,23 @@ STALL = 12
 """Newton iterations without halving the best residual that count as a stall."""
 
 
+ANDERSON_DEPTH = 5
+"""Rounds of the frozen-traction iteration that Anderson mixing combines."""
+
+MAX_ROUNDS = 100
+INNER_ITERATIONS = 3
+"""Bound on the rounds of the frozen-traction iteration before the Newton solve takes over."""
+
+STALL_ROUNDS = 4
+"""Rounds without halving the best residual that count as a stall of the frozen-traction iteration."""
+
+FIRST_INNER_TOL = 1e-2
+INNER_FRACTION = 0.1
+INNER_FLOOR = 0.1
+"""The inner solves' tolerance: :data:`FIRST_INNER_TOL` first, then this fraction of the outer residual,
+never below ``INNER_FLOOR * tol``."""
+
+
 def solve_cohesive(
     operator,
     heights: np.ndarray,
@@ -106,12 +123,18 @@ def solve_cohesive(
     load_control = mean_pressure is not None
     p = None if initial_pressure is None else np.array(initial_pressure, dtype=float)
     delta = initial_penetration if load_control else penetration
-    if p is None:
-        p, delta = _cold_start(operator, heights, adhesion, mean_pressure, penetration, solve_repulsive)
-    if delta is None:
-        delta = 0.0
-    run = _Newton(operator, heights, adhesion, mean_pressure, penetration, tol, max_iter)
-    result = run(p, delta)
+    result = None
+    if solve_repulsive is not None:  # cold: its first round is the non-adhesive solve, to a loose tolerance
+        result = _FrozenTraction(operator, heights, adhesion, mean_pressure, penetration, tol,
+                                 solve_repulsive)(p, delta)
+    method = "cohesive-frozen-traction"
+    if result is None or not result[-1]:  # the frozen-traction iteration stalled: semi-smooth Newton
+        method = "cohesive-newton"
+        if p is None:
+            p, delta = _cold_start(operator, heights, adhesion, mean_pressure, penetration, solve_repulsive)
+        if delta is None:
+            delta = 0.0
+        result = _Newton(operator, heights, adhesion, mean_pressure, penetration, tol, max_iter)(p, delta)
     if not result[-1]:  # stalled: continuation in the range (8, 4, 2, 1 times), warm-started stage to stage
         p_c, d_c = p, delta
         for factor in RANGES:
@@ -125,7 +148,7 @@ def solve_cohesive(
     displacement = g - (heights.max() - heights) + delta
     state = ContactState(pressure=p, gap=g, displacement=displacement, penetration=float(delta),
                          mean_pressure=float(p.mean()), iterations=iterations, residual=float(residual),
-                         converged=bool(converged), solver=f"cohesive-newton ({adhesion.model})",
+                         converged=bool(converged), solver=f"{method} ({adhesion.model})",
                          outer_iterations=krylov)
     return state, p_r
 
@@ -162,6 +185,102 @@ def _cold_start(operator, heights, adhesion, mean_pressure, penetration, solve_r
     return state.pressure, state.penetration
 
 
+class _FrozenTraction:
+    """The cohesive contact as a sequence of non-adhesive ones: with the adhesive traction ``a`` frozen, the
+    total traction is ``p = a + q``, ``q >= 0`` the repulsive part, and the gap ``K q + (K a + h0 - d)``: the
+    scene's own constrained solver (Polonsky-Keer, or its dual) on the heights ``h - K a`` under the load
+    ``P - mean(a)``. The law then gives the next traction ``a(g)``; Anderson mixing (Walker & Ni, SIAM J.
+    Numer. Anal. 49, 1715-1735, 2011) of the last :data:`ANDERSON_DEPTH` rounds makes that fixed point
+    converge where plain substitution oscillates (its gain ``|a'| K`` is of order 1 across the process
+    zone, which is what sets the zone's length). Each inner solve is warm-started from the last ``q`` and
+    stopped at a tolerance that follows the outer residual down, so the rounds cost a few CG iterations
+    each. The residual is that of :class:`_Newton`, on the state ``(a + q, g)`` the inner solve returns."""
+
+    def __init__(self, operator, heights, adhesion, mean_pressure, penetration, tol, solve_repulsive):
+        self.op, self.law, self.tol, self.solve = operator, adhesion, tol, solve_repulsive
+        self.heights, self.load, self.penetration = heights, mean_pressure, penetration
+        self.measure = _Newton(operator, heights, adhesion, mean_pressure, penetration, tol, 1)
+        self.cap = {} if INNER_ITERATIONS is None else {"max_iter": INNER_ITERATIONS}
+
+    def __call__(self, p, delta):
+        law, heights, top = self.law, self.heights, float(self.heights.max())
+        if p is None:  # cold: no adhesive traction yet, the inner solver's own start
+            a, q = np.zeros_like(heights), None
+        else:
+            if delta is None:  # a warm start without its approach: the one that closes the smallest gap
+                delta = float(np.min(self.op(p) + self.measure.h0))
+            a = law.traction(self.op(p) + self.measure.h0 - delta)
+            q = np.maximum(p - a, 0.0)
+        mix = _Anderson(heights.size, -law.peak_stress, 0.0)
+        inner_tol, best, best_round, iterations = FIRST_INNER_TOL, np.inf, 0, 0
+        state = None
+        for rounds in range(1, MAX_ROUNDS + 1):
+            shifted = heights - self.op(a)
+            lift = float(shifted.max()) - top  # the approach is counted from the highest shifted point
+            if self.load is not None:
+                load = self.load - float(a.mean())
+                if load <= 0.0:  # the adhesive traction alone carries the load: no repulsive contact left
+                    return None
+                inner = self.solve(shifted, mean_pressure=load, penetration=None, tol=inner_tol,
+                                   initial_pressure=q, **self.cap)
+            else:
+                inner = self.solve(shifted, mean_pressure=None, penetration=self.penetration + lift,
+                                   tol=inner_tol, initial_pressure=q, **self.cap)
+            iterations += inner.iterations
+            q, g, delta = inner.pressure, inner.gap, inner.penetration - lift
+            p = q + a
+            state = self.measure.residual_of(p, g, largest=False)
+            residual = state[-1]
+            if residual <= self.tol:
+                break
+            if residual < 0.5 * best:
+                best, best_round = residual, rounds
+            elif rounds - best_round > STALL_ROUNDS:
+                break
+            inner_tol = max(min(inner_tol, INNER_FRACTION * residual), INNER_FLOOR * self.tol)
+            a = mix(a, p - state[1])  # the law's traction at the new gap: p - p_r
+        p_r = np.where(state[2], state[1], 0.0)
+        return p, delta, g, p_r, iterations, rounds, residual, residual <= self.tol
+
+class _Anderson:
+    """Anderson mixing of the fixed point ``x = T(x)`` of fields, kept within ``[lower, upper]``: the last
+    :data:`ANDERSON_DEPTH` differences of the iterates and of their residuals ``T(x) - x`` in ring
+    buffers, the least-squares weights from their Gram matrix, updated by one row a round (dot products by
+    ``einsum``: BLAS threads that wait for busy cores made them cost as much as an FFT)."""
+
+    def __init__(self, size, lower, upper):
+        self.dx = np.zeros((ANDERSON_DEPTH, size))
+        self.df = np.zeros((ANDERSON_DEPTH, size))
+        self.gram = np.zeros((ANDERSON_DEPTH, ANDERSON_DEPTH))
+        self.lower, self.upper = lower, upper
+        self.count, self.last_x, self.last_f = 0, None, None
+
+    def __call__(self, x, image):
+        shape = x.shape
+        f = np.subtract(image, x).ravel()
+        x = x.ravel()
+        if self.last_x is not None:
+            row = self.count % ANDERSON_DEPTH
+            np.subtract(x, self.last_x, out=self.dx[row])
+            np.subtract(f, self.last_f, out=self.df[row])
+            self.count += 1
+            m = min(self.count, ANDERSON_DEPTH)
+            dots = np.array([np.einsum("i,i->", self.df[row], self.df[k]) for k in range(m)])
+            self.gram[row, :m] = dots
+            self.gram[:m, row] = dots
+        self.last_x, self.last_f = x.copy(), f
+        m = min(self.count, ANDERSON_DEPTH)
+        if m == 0:
+            return image
+        gram = self.gram[:m, :m]
+        rhs = np.array([np.einsum("i,i->", self.df[k], f) for k in range(m)])
+        gamma = np.linalg.lstsq(gram + 1e-14 * np.trace(gram) * np.eye(m), rhs, rcond=None)[0]
+        mixed = x + f
+        for k in range(m):
+            mixed -= gamma[k] * (self.dx[k] + self.df[k])
+        return np.clip(mixed, self.lower, self.upper, out=mixed).reshape(shape)
+
+
 class _Newton:
     """One semi-smooth Newton solve of the cohesive contact at one range."""
 
@@ -178,12 +297,17 @@ class _Newton:
         self.pscale = self.sigma0 + (abs(mean_pressure) if self.control else 0.0)
 
     def _evaluate(self, p, delta):
-        g = self.op(p) + self.h0 - delta
+        return self.residual_of(p, self.op(p) + self.h0 - delta)
+
+    def residual_of(self, p, g, largest=True):
+        """``(g, p_r, active, phi, residual)`` of the traction ``p`` and its gap ``g``; the interpenetration
+        term is the largest (``largest``) or the mean one."""
         p_r = p - self.law.traction(g)
         active = p_r > self.c * g
         phi = np.where(active, self.c * g, p_r)
-        residual = float(np.mean(np.abs(phi))) / self.c / self.hs
-        residual = max(residual, float(np.max(np.maximum(-g, 0.0))) / self.hs)
+        overlap = np.maximum(-g, 0.0)
+        overlap = float(np.max(overlap)) if largest else float(np.mean(overlap))
+        residual = max(float(np.mean(np.abs(phi))) / self.c, overlap) / self.hs
         if self.control:
             residual = max(residual, abs(float(p.mean()) - self.load) / self.pscale)
         return g, p_r, active, phi, residual
