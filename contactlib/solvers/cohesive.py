@@ -29,6 +29,8 @@ from collections.abc import Callable
 
 import numpy as np
 
+from . import _cohesive_sweeps as sweeps
+from ..adhesion import MAUGIS_RAMP
 from .state import ContactState, height_scale
 
 MAX_NEWTON = 60
@@ -212,6 +214,7 @@ class _FrozenTraction:
             a = law.traction(self.op(p) + self.measure.h0 - delta)
             q = np.maximum(p - a, 0.0)
         mix = _Anderson(heights.size, -law.peak_stress, 0.0)
+        image = np.empty_like(heights)  # the law's traction at the last gap
         inner_tol, best, best_round, iterations = FIRST_INNER_TOL, np.inf, 0, 0
         state = None
         for rounds in range(1, MAX_ROUNDS + 1):
@@ -229,8 +232,7 @@ class _FrozenTraction:
             iterations += inner.iterations
             q, g, delta = inner.pressure, inner.gap, inner.penetration - lift
             p = q + a
-            state = self.measure.residual_of(p, g, largest=False)
-            residual = state[-1]
+            residual = self._residual(p, g, image)
             if residual <= self.tol:
                 break
             if residual < 0.5 * best:
@@ -238,47 +240,53 @@ class _FrozenTraction:
             elif rounds - best_round > STALL_ROUNDS:
                 break
             inner_tol = max(min(inner_tol, INNER_FRACTION * residual), INNER_FLOOR * self.tol)
-            a = mix(a, p - state[1])  # the law's traction at the new gap: p - p_r
-        p_r = np.where(state[2], state[1], 0.0)
-        return p, delta, g, p_r, iterations, rounds, residual, residual <= self.tol
+            a = mix(a, image)
+        _, p_r, active, _, residual = self.measure.residual_of(p, g, largest=False)
+        return p, delta, g, np.where(active, p_r, 0.0), iterations, rounds, residual, residual <= self.tol
+
+    def _residual(self, p, g, image):
+        """:meth:`_Newton.residual_of` (mean interpenetration) in one sweep, writing the law's traction at
+        the gap ``g`` into ``image``."""
+        m, law = self.measure, self.law
+        code = sweeps.MAUGIS if law.model == "maugis" else sweeps.EXPONENTIAL
+        phi_sum, overlap = sweeps.law_residual(np.ascontiguousarray(p).ravel(), np.ascontiguousarray(g).ravel(),
+                                               code, law.peak_stress, law.range, MAUGIS_RAMP, m.c, image.reshape(-1))
+        residual = max(phi_sum / m.c, overlap) / (p.size * m.hs)
+        if m.control:
+            residual = max(residual, abs(float(p.mean()) - m.load) / m.pscale)
+        return residual
 
 class _Anderson:
     """Anderson mixing of the fixed point ``x = T(x)`` of fields, kept within ``[lower, upper]``: the last
     :data:`ANDERSON_DEPTH` differences of the iterates and of their residuals ``T(x) - x`` in ring
-    buffers, the least-squares weights from their Gram matrix, updated by one row a round (dot products by
-    ``einsum``: BLAS threads that wait for busy cores made them cost as much as an FFT)."""
+    buffers, the least-squares weights from their Gram matrix, updated by one row a round (fused sweeps,
+    :mod:`._cohesive_sweeps`: numpy's passes and BLAS dot products, whose threads wait for busy cores,
+    cost as much a round as an FFT pair)."""
 
     def __init__(self, size, lower, upper):
         self.dx = np.zeros((ANDERSON_DEPTH, size))
         self.df = np.zeros((ANDERSON_DEPTH, size))
+        self.last_x, self.last_f = np.zeros(size), np.zeros(size)
         self.gram = np.zeros((ANDERSON_DEPTH, ANDERSON_DEPTH))
-        self.lower, self.upper = lower, upper
-        self.count, self.last_x, self.last_f = 0, None, None
+        self.rhs = np.zeros(ANDERSON_DEPTH)
+        self.lower, self.upper = float(lower), float(upper)
+        self.rounds = 0
 
     def __call__(self, x, image):
+        """The next iterate from ``x`` and ``T(x)`` (``image``), both of the same shape."""
         shape = x.shape
-        f = np.subtract(image, x).ravel()
-        x = x.ravel()
-        if self.last_x is not None:
-            row = self.count % ANDERSON_DEPTH
-            np.subtract(x, self.last_x, out=self.dx[row])
-            np.subtract(f, self.last_f, out=self.df[row])
-            self.count += 1
-            m = min(self.count, ANDERSON_DEPTH)
-            dots = np.array([np.einsum("i,i->", self.df[row], self.df[k]) for k in range(m)])
-            self.gram[row, :m] = dots
-            self.gram[:m, row] = dots
-        self.last_x, self.last_f = x.copy(), f
-        m = min(self.count, ANDERSON_DEPTH)
+        x, image = np.ascontiguousarray(x).ravel(), np.ascontiguousarray(image).ravel()
+        row = (self.rounds - 1) % ANDERSON_DEPTH if self.rounds else -1
+        m = min(self.rounds, ANDERSON_DEPTH)
+        sweeps.anderson_record(x, image, self.last_x, self.last_f, self.dx, self.df, row, m, self.gram, self.rhs)
+        self.rounds += 1
         if m == 0:
-            return image
+            return np.clip(image, self.lower, self.upper).reshape(shape)
         gram = self.gram[:m, :m]
-        rhs = np.array([np.einsum("i,i->", self.df[k], f) for k in range(m)])
-        gamma = np.linalg.lstsq(gram + 1e-14 * np.trace(gram) * np.eye(m), rhs, rcond=None)[0]
-        mixed = x + f
-        for k in range(m):
-            mixed -= gamma[k] * (self.dx[k] + self.df[k])
-        return np.clip(mixed, self.lower, self.upper, out=mixed).reshape(shape)
+        gamma = np.linalg.lstsq(gram + 1e-14 * np.trace(gram) * np.eye(m), self.rhs[:m], rcond=None)[0]
+        out = np.empty_like(x)
+        sweeps.anderson_mix(x, image, self.dx, self.df, gamma, m, self.lower, self.upper, out)
+        return out.reshape(shape)
 
 
 class _Newton:
