@@ -3,23 +3,38 @@
 The total traction is ``p = p_r + a(g)``: a repulsive part ``p_r >= 0``, zero where the gap ``g = K p +
 max h - h - d`` is open, and the adhesive traction ``a(g) = -sigma(g) <= 0`` of the cohesive law
 (:class:`contactlib.Adhesion`). The conditions ``p_r >= 0, g >= 0, p_r g = 0`` are the complementarity
-function ``phi = min(p_r, c g) = 0`` (``c`` an element stiffness, so both parts are pressures), solved
-by a semi-smooth Newton (primal-dual active set) method: on the active set ``C = {p_r > c g}`` the row
-is ``g = 0`` (contact), elsewhere ``p = a(g)`` (the law), linearised with ``a'(g)``. Each Newton system
-goes to GMRES with the body's operator (``K``, periodic or zero-padded, half-space or layer) and, on
-the contact rows, the Fourier preconditioner the constrained CG uses (``operator.inverse_multiplier``).
-Load control adds the approach as unknown and ``mean(p) = P``.
+function ``phi = min(p_r, c g) = 0`` (``c`` an element stiffness, so both parts are pressures).
 
-The start is the non-adhesive state of the scene from the existing constrained solver (or a warm
-start). The Maugis step is a narrow ramp (:data:`contactlib.adhesion.MAUGIS_RAMP`), so Newton sees its edge move.
-A strong or short-ranged law makes the first Newton steps wild (the active set swings by thousands
-of points on a rough surface); when a solve stalls it is restarted by continuation in the range
-(:data:`RANGES`, from its own start), and if that stalls too, from the non-adhesive state by
-continuation in the work of adhesion (``w / 16`` first, doubled after each converged stage, bisected
-back after a failed one: :func:`_continuation`). A solve that does not meet ``tol`` comes back ``converged=False``.
+Two methods, tried in this order:
 
-The residual is scale-free, as the non-adhesive solvers': the mean ``|phi| / c`` over the rms height,
-the largest interpenetration and the load error over ``sigma_0 + |P|``.
+1. **Frozen traction** (:class:`_FrozenTraction`). With ``a`` held fixed the problem is non-adhesive:
+   ``q = p - a >= 0`` on the heights ``h - K a`` under the load ``P - mean(a)`` (or at the same approach),
+   which the scene's own constrained solver (Polonsky-Keer, or its dual under periodic displacement
+   control) solves, on any body it handles. The law then gives the next ``a = a(g)``; Anderson mixing
+   accelerates that fixed point, and each round runs only :data:`INNER_ITERATIONS` warm-started CG
+   iterations (a full inner solve on the dual path), so a solve costs about twice the non-adhesive
+   one's iterations on a 2D rough surface (``benchmarks/bench_adhesion.py``). A cold start is the first
+   round itself (``a = 0``). Where the fixed point converges slowly (its gain ``|a'| K`` over the
+   process zone is near 1 on a single smooth contact with a resolved zone: the JKR sphere, a 1D wavy
+   profile), it stops after :data:`STALL_ROUNDS` rounds without a :data:`STALL_DROP` fall.
+2. **Semi-smooth Newton** (primal-dual active set, :class:`_Newton`): on the active set ``C = {p_r > c g}``
+   the row is ``g = 0`` (contact), elsewhere ``p = a(g)`` (the law), linearised with ``a'(g)``. Each
+   Newton system goes to GMRES with the body's operator and, on the contact rows, the Fourier
+   preconditioner the constrained CG uses (``operator.inverse_multiplier``). Load control adds the
+   approach as unknown and ``mean(p) = P``. It starts from the non-adhesive state of the scene (or the
+   warm start). The Maugis step is a narrow ramp (:data:`contactlib.adhesion.MAUGIS_RAMP`), so Newton
+   sees its edge move. A strong or short-ranged law makes the first Newton steps wild (the active set
+   swings by thousands of points on a rough surface); when a solve stalls it is restarted by
+   continuation in the range (:data:`RANGES`, from its own start), and if that stalls too, from the
+   non-adhesive state by continuation in the work of adhesion (``w / 16`` first, doubled after each
+   converged stage, bisected back after a failed one: :func:`_continuation`).
+
+A solve that does not meet ``tol`` comes back ``converged=False``. The residual is scale-free: the mean
+``|phi| / c`` and the interpenetration over the rms height, and the load error over ``sigma_0 + |P|``.
+The interpenetration is the mean one for the frozen traction, as for the non-adhesive solvers (whose
+answers at ``tol`` 1e-8 leave a largest interpenetration of a few 1e-8 of the rms height), and the
+largest one for Newton, whose inexact steps can leave a few points far off with a small mean (a 1D
+profile of 8192 points stopped 9 elements short of the contact width on the mean).
 """
 
 from __future__ import annotations
@@ -63,10 +78,15 @@ STALL = 12
 
 
 ANDERSON_DEPTH = 5
-"""Rounds of the frozen-traction iteration that Anderson mixing combines."""
+"""Rounds of the frozen-traction iteration that Anderson mixing combines (2-8 took the same rounds on the
+benchmark scene; without mixing the Maugis law took 22 rounds instead of 14)."""
 
 MAX_ROUNDS = 100
+"""Bound on the rounds of the frozen-traction iteration before the Newton solve takes over."""
+
 INNER_ITERATIONS = 3
+"""CG iterations of the primal inner solve a round (256^2 rough scene: 2 took 36-40 iterations in 18-20
+rounds, 3 took 39-42 in 13-14, uncapped 66-105 in 8-12; a round's restart costs about one iteration)."""
 """Bound on the rounds of the frozen-traction iteration before the Newton solve takes over."""
 
 STALL_ROUNDS = 4
@@ -122,8 +142,9 @@ def solve_cohesive(
     Returns
     -------
     (ContactState, ndarray)
-        The state (``pressure`` the total traction; ``iterations`` the Newton steps, ``outer_iterations``
-        the GMRES iterations) and the repulsive part ``p_r`` [pressure].
+        The state (``pressure`` the total traction; frozen traction: ``iterations`` the inner CG iterations,
+        ``outer_iterations`` the rounds; Newton: ``iterations`` the Newton steps, ``outer_iterations`` the
+        GMRES iterations; ``solver`` names the method) and the repulsive part ``p_r`` [pressure].
     """
     load_control = mean_pressure is not None
     p = None if initial_pressure is None else np.array(initial_pressure, dtype=float)
