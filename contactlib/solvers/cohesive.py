@@ -12,7 +12,8 @@ Two methods, tried in this order:
    which the scene's own constrained solver (Polonsky-Keer, or its dual under periodic displacement
    control) solves, on any body it handles. The law then gives the next ``a = a(g)``; Anderson mixing
    accelerates that fixed point, and each round runs only :data:`INNER_ITERATIONS` warm-started CG
-   iterations (a full inner solve on the dual path), so a solve costs about twice the non-adhesive
+   iterations (a full inner solve on the dual path and on a plate-like remote-pressure layer, whose CG
+   is not preconditioned), so a solve costs about twice the non-adhesive
    one's iterations on a 2D rough surface (``benchmarks/bench_adhesion.py``). A cold start is the first
    round itself (``a = 0``). Where the fixed point converges slowly (its gain ``|a'| K`` over the
    process zone is near 1 on a single smooth contact with a resolved zone: the JKR sphere, a 1D wavy
@@ -229,7 +230,8 @@ class _FrozenTraction:
         # the primal solver keeps its progress from a warm start, so a few iterations a round suffice; the dual
         # one (periodic displacement control) restarts from the gap of the pressure and needs its full solve
         dual = not operator.definite and mean_pressure is None
-        self.cap = {} if INNER_ITERATIONS is None or dual else {"max_iter": INNER_ITERATIONS}
+        full = dual or not operator.preconditionable  # an unpreconditioned CG (plate-like layer) crawls too
+        self.cap = {} if INNER_ITERATIONS is None or full else {"max_iter": INNER_ITERATIONS}
 
     def __call__(self, p, delta):
         law, heights, top = self.law, self.heights, float(self.heights.max())
