@@ -73,7 +73,8 @@ def main(argv=None):
             t_ours, t_plain = statistics.median(times), statistics.median(plain_times)
             gap = float(ds.gap.mean() - ds.gap.min())
             print(f"{n:>5} {model:>12} {t_peer:>9.3f} {t_ours:>12.3f} {t_ours / t_peer:>6.2f} {t_plain:>8.3f} "
-                  f"{t_ours / t_plain:>9.2f} {int(ds.iterations):>4} {int(ds.outer_iterations):>6} {int(plain.iterations):>9} "
+                  f"{t_ours / t_plain:>9.2f} {int(ds.iterations):>4} {int(ds.outer_iterations):>6} "
+                  f"{int(plain.iterations):>9} "
                   f"{ds.attrs['solver'].split()[0]:>15} {float(ds.contact_area) - peer['contact_area']:>+8.1e} "
                   f"{(gap - peer['mean_gap']) / peer['mean_gap']:>+9.1e}", flush=True)
 

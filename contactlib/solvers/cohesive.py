@@ -219,9 +219,10 @@ class _FrozenTraction:
     ``P - mean(a)``. The law then gives the next traction ``a(g)``; Anderson mixing (Walker & Ni, SIAM J.
     Numer. Anal. 49, 1715-1735, 2011) of the last :data:`ANDERSON_DEPTH` rounds makes that fixed point
     converge where plain substitution oscillates (its gain ``|a'| K`` is of order 1 across the process
-    zone, which is what sets the zone's length). Each inner solve is warm-started from the last ``q`` and
-    stopped at a tolerance that follows the outer residual down, so the rounds cost a few CG iterations
-    each. The residual is that of :class:`_Newton`, on the state ``(a + q, g)`` the inner solve returns."""
+    zone, which is what sets the zone's length). Each inner solve is warm-started from the last ``q``,
+    stopped at a tolerance that follows the outer residual down and, on the primal path, after
+    :data:`INNER_ITERATIONS` iterations. The residual is that of :class:`_Newton` with the mean
+    interpenetration, on the state ``(a + q, g)`` the inner solve returns."""
 
     def __init__(self, operator, heights, adhesion, mean_pressure, penetration, tol, solve_repulsive):
         self.op, self.law, self.tol, self.solve = operator, adhesion, tol, solve_repulsive
@@ -245,7 +246,6 @@ class _FrozenTraction:
         mix = _Anderson(heights.size, -law.peak_stress, 0.0)
         image = np.empty_like(heights)  # the law's traction at the last gap
         inner_tol, history, iterations = FIRST_INNER_TOL, [], 0
-        state = None
         for rounds in range(1, MAX_ROUNDS + 1):
             shifted = heights - self.op(a)
             lift = float(shifted.max()) - top  # the approach is counted from the highest shifted point
@@ -262,7 +262,7 @@ class _FrozenTraction:
             q, g, delta = inner.pressure, inner.gap, inner.penetration - lift
             p = q + a
             residual = self._residual(p, g, image)
-            if residual <= self.tol:
+            if residual <= self.tol or not np.isfinite(residual):
                 break
             history.append(residual)
             if len(history) > STALL_ROUNDS and min(history[-STALL_ROUNDS:]) > STALL_DROP * min(history[:-STALL_ROUNDS]):
@@ -283,6 +283,7 @@ class _FrozenTraction:
         if m.control:
             residual = max(residual, abs(float(p.mean()) - m.load) / m.pscale)
         return residual
+
 
 class _Anderson:
     """Anderson mixing of the fixed point ``x = T(x)`` of fields, kept within ``[lower, upper]``: the last
