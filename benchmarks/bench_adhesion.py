@@ -5,8 +5,10 @@ Scene: a periodic self-affine surface (Hurst 0.8, rolloff 4, cutoff 32 wavelengt
 ``N x N``, ``E = 1``, ``nu = 0``, mean pressure 0.01, work 1e-5, range 1e-3 (process zone 5 elements at
 N = 256). Both laws. Tolerances: tamaas 1e-10 on its own residual, contactlib 1e-8 on its scale-free one
 (the tamaas test agrees within 1e-3 in area and mean gap at these). Prints medians over ``--repeats``
-runs (a warm-up first), the ratio contactlib / tamaas measured in the same run, the adhesive /
-non-adhesive ratio, and the differences in area and mean gap.
+runs (a warm-up first; tamaas' from ``--peer-warm-up-below`` on is not warmed up: minutes a solve), the ratio
+contactlib / tamaas measured in the same run, the adhesive / non-adhesive ratio (the two interleaved, medians),
+the adhesive solve's CG iterations and frozen-traction rounds against the plain solve's iterations, its method,
+and the differences in area and mean gap.
 
     python benchmarks/bench_adhesion.py --sizes 256 512 1024 --repeats 3
 """
@@ -28,8 +30,9 @@ from tamaas_adhesion import solve_tamaas  # noqa: E402
 WORK, RANGE, LOAD = 1e-5, 1e-3, 0.01
 
 
-def timed(fn, repeats):
-    fn()  # warm-up: numba, FFT plans, tamaas' own
+def timed(fn, repeats, warm=True):
+    if warm:
+        fn()  # warm-up: numba, FFT plans, tamaas' own
     times, out = [], None
     for _ in range(repeats):
         start = time.perf_counter()
@@ -43,21 +46,40 @@ def main(argv=None):
     parser.add_argument("--sizes", type=int, nargs="+", default=[256, 512, 1024])
     parser.add_argument("--models", nargs="+", default=["exponential", "maugis"])
     parser.add_argument("--repeats", type=int, default=3)
+    parser.add_argument("--peer-repeats", type=int, default=None,
+                        help="tamaas' repeats (default --repeats; 0: tamaas is not run, its columns are NaN)")
+    parser.add_argument("--peer-warm-up-below", type=int, default=1024,
+                        help="warm tamaas up only below this N (its solves at 1024^2 take minutes)")
     args = parser.parse_args(argv)
     print(f"{'N':>5} {'law':>12} {'tamaas s':>9} {'contactlib s':>12} {'ratio':>6} {'plain s':>8} {'adh/plain':>9} "
-          f"{'d area':>8} {'d gap/gap':>9}")
+          f"{'its':>4} {'rounds':>6} {'plain its':>9} {'method':>15} {'d area':>8} {'d gap/gap':>9}")
     for n in args.sizes:
         h = contactlib.surfaces.self_affine(n, hurst=0.8, q_roll=4, q_cutoff=32, rms_slope=0.1, seed=1)
-        t_plain, _ = timed(lambda: contactlib.solve(h, E=1.0, nu=0.0, mean_pressure=LOAD, tol=1e-8), args.repeats)
         for model in args.models:
             law = contactlib.Adhesion(work=WORK, range=RANGE, model=model)
-            t_peer, peer = timed(lambda: solve_tamaas(h.values, E=1.0, nu=0.0, work=WORK, range_=RANGE, model=model,
-                                                      mean_pressure=LOAD, tol=1e-10), args.repeats)
-            t_ours, ds = timed(lambda: contactlib.solve(h, E=1.0, nu=0.0, mean_pressure=LOAD, tol=1e-8, adhesion=law),
-                               args.repeats)
+            if args.peer_repeats == 0:
+                t_peer, peer = float("nan"), {"contact_area": float("nan"), "mean_gap": float("nan")}
+            else:
+                t_peer, peer = timed(lambda: solve_tamaas(h.values, E=1.0, nu=0.0, work=WORK, range_=RANGE, model=model,
+                                                          mean_pressure=LOAD, tol=1e-10),
+                                     args.repeats if args.peer_repeats is None else args.peer_repeats,
+                                     warm=n < args.peer_warm_up_below)
+            # the adhesive and the plain solve interleaved, so that both see the same load on the machine
+            times, plain_times = [], []
+            for k in range(args.repeats + 1):
+                start = time.perf_counter()
+                ds = contactlib.solve(h, E=1.0, nu=0.0, mean_pressure=LOAD, tol=1e-8, adhesion=law)
+                middle = time.perf_counter()
+                plain = contactlib.solve(h, E=1.0, nu=0.0, mean_pressure=LOAD, tol=1e-8)
+                if k:  # the first pair is the warm-up
+                    times.append(middle - start)
+                    plain_times.append(time.perf_counter() - middle)
+            t_ours, t_plain = statistics.median(times), statistics.median(plain_times)
             gap = float(ds.gap.mean() - ds.gap.min())
             print(f"{n:>5} {model:>12} {t_peer:>9.3f} {t_ours:>12.3f} {t_ours / t_peer:>6.2f} {t_plain:>8.3f} "
-                  f"{t_ours / t_plain:>9.1f} {float(ds.contact_area) - peer['contact_area']:>+8.1e} "
+                  f"{t_ours / t_plain:>9.2f} {int(ds.iterations):>4} {int(ds.outer_iterations):>6} "
+                  f"{int(plain.iterations):>9} "
+                  f"{ds.attrs['solver'].split()[0]:>15} {float(ds.contact_area) - peer['contact_area']:>+8.1e} "
                   f"{(gap - peer['mean_gap']) / peer['mean_gap']:>+9.1e}", flush=True)
 
 

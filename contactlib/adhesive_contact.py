@@ -156,4 +156,6 @@ def label(ds: xr.Dataset, state: AdhesiveState, adhesion: Adhesion, setup, *, le
     if state.notes:
         ds.attrs["adhesion_branch"] = "; ".join(state.notes)
     if state.outer_iterations:
-        ds["outer_iterations"].attrs["long_name"] = "Krylov (GMRES) iterations of the Newton steps"
+        ds["outer_iterations"].attrs["long_name"] = (
+            "frozen-traction rounds (iterations: their inner CG iterations)" if "frozen" in state.solver
+            else "Krylov (GMRES) iterations of the Newton steps")

@@ -348,3 +348,26 @@ def test_fig4_load_control_pull_off():
     falling = np.array([0.0, 0.0, -0.3, -0.5, -0.6, -0.5, -0.3, -0.2, 0.0])  # more tensile as it closes: never held
     pull, at, full = load_control_pull_off(d, falling, area, jump)
     assert math.isnan(pull) and math.isnan(at) and full == 1
+
+
+@pytest.mark.parametrize("model", ["maugis", "exponential"])
+def test_cohesive_sweep_matches_the_law(model):
+    """The frozen-traction rounds evaluate the law and the residual in one fused sweep: the same traction as
+    :meth:`Adhesion.traction` (ramp and tail included, gaps negative to beyond the range) and the same
+    residual as the Newton solver's measure with the mean interpenetration."""
+    from contactlib.adhesion import MAUGIS_RAMP
+    from contactlib.solvers import _cohesive_sweeps as sweeps
+
+    law = Adhesion(work=2e-4, range=1e-2, model=model)
+    rng = np.random.default_rng(3)
+    g = rng.uniform(-0.5, 3.0, 4096) * law.range
+    p = rng.uniform(-1.2, 2.0, 4096) * law.peak_stress
+    image = np.empty_like(g)
+    code = sweeps.MAUGIS if model == "maugis" else sweeps.EXPONENTIAL
+    c = 3.0
+    phi_sum, overlap = sweeps.law_residual(p, g, code, law.peak_stress, law.range, MAUGIS_RAMP, c, image)
+    np.testing.assert_allclose(image, law.traction(g), rtol=1e-13, atol=1e-15 * law.peak_stress)
+    p_r = p - law.traction(g)
+    phi = np.where(p_r > c * g, c * g, p_r)
+    assert phi_sum == pytest.approx(np.abs(phi).sum(), rel=1e-12)
+    assert overlap == pytest.approx(np.maximum(-g, 0).sum(), rel=1e-12)

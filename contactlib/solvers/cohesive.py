@@ -3,23 +3,39 @@
 The total traction is ``p = p_r + a(g)``: a repulsive part ``p_r >= 0``, zero where the gap ``g = K p +
 max h - h - d`` is open, and the adhesive traction ``a(g) = -sigma(g) <= 0`` of the cohesive law
 (:class:`contactlib.Adhesion`). The conditions ``p_r >= 0, g >= 0, p_r g = 0`` are the complementarity
-function ``phi = min(p_r, c g) = 0`` (``c`` an element stiffness, so both parts are pressures), solved
-by a semi-smooth Newton (primal-dual active set) method: on the active set ``C = {p_r > c g}`` the row
-is ``g = 0`` (contact), elsewhere ``p = a(g)`` (the law), linearised with ``a'(g)``. Each Newton system
-goes to GMRES with the body's operator (``K``, periodic or zero-padded, half-space or layer) and, on
-the contact rows, the Fourier preconditioner the constrained CG uses (``operator.inverse_multiplier``).
-Load control adds the approach as unknown and ``mean(p) = P``.
+function ``phi = min(p_r, c g) = 0`` (``c`` an element stiffness, so both parts are pressures).
 
-The start is the non-adhesive state of the scene from the existing constrained solver (or a warm
-start). The Maugis step is a narrow ramp (:data:`contactlib.adhesion.MAUGIS_RAMP`), so Newton sees its edge move.
-A strong or short-ranged law makes the first Newton steps wild (the active set swings by thousands
-of points on a rough surface); when a solve stalls it is restarted by continuation in the range
-(:data:`RANGES`, from its own start), and if that stalls too, from the non-adhesive state by
-continuation in the work of adhesion (``w / 16`` first, doubled after each converged stage, bisected
-back after a failed one: :func:`_continuation`). A solve that does not meet ``tol`` comes back ``converged=False``.
+Two methods, tried in this order:
 
-The residual is scale-free, as the non-adhesive solvers': the mean ``|phi| / c`` over the rms height,
-the largest interpenetration and the load error over ``sigma_0 + |P|``.
+1. **Frozen traction** (:class:`_FrozenTraction`). With ``a`` held fixed the problem is non-adhesive:
+   ``q = p - a >= 0`` on the heights ``h - K a`` under the load ``P - mean(a)`` (or at the same approach),
+   which the scene's own constrained solver (Polonsky-Keer, or its dual under periodic displacement
+   control) solves, on any body it handles. The law then gives the next ``a = a(g)``; Anderson mixing
+   accelerates that fixed point, and each round runs only :data:`INNER_ITERATIONS` warm-started CG
+   iterations (a full inner solve on the dual path and on a plate-like remote-pressure layer, whose CG
+   is not preconditioned), so a solve costs about twice the non-adhesive
+   one's iterations on a 2D rough surface (``benchmarks/bench_adhesion.py``). A cold start is the first
+   round itself (``a = 0``). Where the fixed point converges slowly (its gain ``|a'| K`` over the
+   process zone is near 1 on a single smooth contact with a resolved zone: the JKR sphere, a 1D wavy
+   profile), it stops after :data:`STALL_ROUNDS` rounds without a :data:`STALL_DROP` fall.
+2. **Semi-smooth Newton** (primal-dual active set, :class:`_Newton`): on the active set ``C = {p_r > c g}``
+   the row is ``g = 0`` (contact), elsewhere ``p = a(g)`` (the law), linearised with ``a'(g)``. Each
+   Newton system goes to GMRES with the body's operator and, on the contact rows, the Fourier
+   preconditioner the constrained CG uses (``operator.inverse_multiplier``). Load control adds the
+   approach as unknown and ``mean(p) = P``. It starts from the non-adhesive state of the scene (or the
+   warm start). The Maugis step is a narrow ramp (:data:`contactlib.adhesion.MAUGIS_RAMP`), so Newton
+   sees its edge move. A strong or short-ranged law makes the first Newton steps wild (the active set
+   swings by thousands of points on a rough surface); when a solve stalls it is restarted by
+   continuation in the range (:data:`RANGES`, from its own start), and if that stalls too, from the
+   non-adhesive state by continuation in the work of adhesion (``w / 16`` first, doubled after each
+   converged stage, bisected back after a failed one: :func:`_continuation`).
+
+A solve that does not meet ``tol`` comes back ``converged=False``. The residual is scale-free: the mean
+``|phi| / c`` and the interpenetration over the rms height, and the load error over ``sigma_0 + |P|``.
+The interpenetration is the mean one for the frozen traction, as for the non-adhesive solvers (whose
+answers at ``tol`` 1e-8 leave a largest interpenetration of a few 1e-8 of the rms height), and the
+largest one for Newton, whose inexact steps can leave a few points far off with a small mean (a 1D
+profile of 8192 points stopped 9 elements short of the contact width on the mean).
 """
 
 from __future__ import annotations
@@ -29,6 +45,8 @@ from collections.abc import Callable
 
 import numpy as np
 
+from . import _cohesive_sweeps as sweeps
+from ..adhesion import MAUGIS_RAMP
 from .state import ContactState, height_scale
 
 MAX_NEWTON = 60
@@ -58,6 +76,31 @@ to move the contact a long way (a cold start at small range failed with it on)."
 
 STALL = 12
 """Newton iterations without halving the best residual that count as a stall."""
+
+
+ANDERSON_DEPTH = 5
+"""Rounds of the frozen-traction iteration that Anderson mixing combines (2-8 took the same rounds on the
+benchmark scene; without mixing the Maugis law took 22 rounds instead of 14)."""
+
+MAX_ROUNDS = 100
+"""Bound on the rounds of the frozen-traction iteration before the Newton solve takes over."""
+
+INNER_ITERATIONS = 3
+"""CG iterations of the primal inner solve a round (256^2 rough scene: 2 took 36-40 iterations in 18-20
+rounds, 3 took 39-42 in 13-14, uncapped 66-105 in 8-12; a round's restart costs about one iteration)."""
+"""Bound on the rounds of the frozen-traction iteration before the Newton solve takes over."""
+
+STALL_ROUNDS = 4
+STALL_DROP = 0.25
+"""The frozen-traction iteration counts as stalled when :data:`STALL_ROUNDS` rounds have not brought the residual
+below ``STALL_DROP`` times its best before them (on 2D rough scenes under load it falls 2-3x a round; where it
+falls 10 % a round, as on a 1D wavy profile with a 16-element process zone, Newton is faster)."""
+
+FIRST_INNER_TOL = 1e-2
+INNER_FRACTION = 0.1
+INNER_FLOOR = 0.1
+"""The inner solves' tolerance: :data:`FIRST_INNER_TOL` first, then this fraction of the outer residual,
+never below ``INNER_FLOOR * tol``."""
 
 
 def solve_cohesive(
@@ -100,18 +143,25 @@ def solve_cohesive(
     Returns
     -------
     (ContactState, ndarray)
-        The state (``pressure`` the total traction; ``iterations`` the Newton steps, ``outer_iterations``
-        the GMRES iterations) and the repulsive part ``p_r`` [pressure].
+        The state (``pressure`` the total traction; frozen traction: ``iterations`` the inner CG iterations,
+        ``outer_iterations`` the rounds; Newton: ``iterations`` the Newton steps, ``outer_iterations`` the
+        GMRES iterations; ``solver`` names the method) and the repulsive part ``p_r`` [pressure].
     """
     load_control = mean_pressure is not None
     p = None if initial_pressure is None else np.array(initial_pressure, dtype=float)
     delta = initial_penetration if load_control else penetration
-    if p is None:
-        p, delta = _cold_start(operator, heights, adhesion, mean_pressure, penetration, solve_repulsive)
-    if delta is None:
-        delta = 0.0
-    run = _Newton(operator, heights, adhesion, mean_pressure, penetration, tol, max_iter)
-    result = run(p, delta)
+    result = None
+    if solve_repulsive is not None:  # cold: its first round is the non-adhesive solve, to a loose tolerance
+        result = _FrozenTraction(operator, heights, adhesion, mean_pressure, penetration, tol,
+                                 solve_repulsive)(p, delta)
+    method = "cohesive-frozen-traction"
+    if result is None or not result[-1]:  # the frozen-traction iteration stalled: semi-smooth Newton
+        method = "cohesive-newton"
+        if p is None:
+            p, delta = _cold_start(operator, heights, adhesion, mean_pressure, penetration, solve_repulsive)
+        if delta is None:
+            delta = 0.0
+        result = _Newton(operator, heights, adhesion, mean_pressure, penetration, tol, max_iter)(p, delta)
     if not result[-1]:  # stalled: continuation in the range (8, 4, 2, 1 times), warm-started stage to stage
         p_c, d_c = p, delta
         for factor in RANGES:
@@ -125,7 +175,7 @@ def solve_cohesive(
     displacement = g - (heights.max() - heights) + delta
     state = ContactState(pressure=p, gap=g, displacement=displacement, penetration=float(delta),
                          mean_pressure=float(p.mean()), iterations=iterations, residual=float(residual),
-                         converged=bool(converged), solver=f"cohesive-newton ({adhesion.model})",
+                         converged=bool(converged), solver=f"{method} ({adhesion.model})",
                          outer_iterations=krylov)
     return state, p_r
 
@@ -162,6 +212,112 @@ def _cold_start(operator, heights, adhesion, mean_pressure, penetration, solve_r
     return state.pressure, state.penetration
 
 
+class _FrozenTraction:
+    """The cohesive contact as a sequence of non-adhesive ones: with the adhesive traction ``a`` frozen, the
+    total traction is ``p = a + q``, ``q >= 0`` the repulsive part, and the gap ``K q + (K a + h0 - d)``: the
+    scene's own constrained solver (Polonsky-Keer, or its dual) on the heights ``h - K a`` under the load
+    ``P - mean(a)``. The law then gives the next traction ``a(g)``; Anderson mixing (Walker & Ni, SIAM J.
+    Numer. Anal. 49, 1715-1735, 2011) of the last :data:`ANDERSON_DEPTH` rounds makes that fixed point
+    converge where plain substitution oscillates (its gain ``|a'| K`` is of order 1 across the process
+    zone, which is what sets the zone's length). Each inner solve is warm-started from the last ``q``,
+    stopped at a tolerance that follows the outer residual down and, on the primal path, after
+    :data:`INNER_ITERATIONS` iterations. The residual is that of :class:`_Newton` with the mean
+    interpenetration, on the state ``(a + q, g)`` the inner solve returns."""
+
+    def __init__(self, operator, heights, adhesion, mean_pressure, penetration, tol, solve_repulsive):
+        self.op, self.law, self.tol, self.solve = operator, adhesion, tol, solve_repulsive
+        self.heights, self.load, self.penetration = heights, mean_pressure, penetration
+        self.measure = _Newton(operator, heights, adhesion, mean_pressure, penetration, tol, 1)
+        # the primal solver keeps its progress from a warm start, so a few iterations a round suffice; the dual
+        # one (periodic displacement control) restarts from the gap of the pressure and needs its full solve
+        dual = not operator.definite and mean_pressure is None
+        full = dual or not operator.preconditionable  # an unpreconditioned CG (plate-like layer) crawls too
+        self.cap = {} if INNER_ITERATIONS is None or full else {"max_iter": INNER_ITERATIONS}
+
+    def __call__(self, p, delta):
+        law, heights, top = self.law, self.heights, float(self.heights.max())
+        if p is None:  # cold: no adhesive traction yet, the inner solver's own start
+            a, q = np.zeros_like(heights), None
+        else:
+            if delta is None:  # a warm start without its approach: the one that closes the smallest gap
+                delta = float(np.min(self.op(p) + self.measure.h0))
+            a = law.traction(self.op(p) + self.measure.h0 - delta)
+            q = np.maximum(p - a, 0.0)
+        mix = _Anderson(heights.size, -law.peak_stress, 0.0)
+        image = np.empty_like(heights)  # the law's traction at the last gap
+        inner_tol, history, iterations = FIRST_INNER_TOL, [], 0
+        for rounds in range(1, MAX_ROUNDS + 1):
+            shifted = heights - self.op(a)
+            lift = float(shifted.max()) - top  # the approach is counted from the highest shifted point
+            if self.load is not None:
+                load = self.load - float(a.mean())
+                if load <= 0.0:  # the adhesive traction alone carries the load: no repulsive contact left
+                    return None
+                inner = self.solve(shifted, mean_pressure=load, penetration=None, tol=inner_tol,
+                                   initial_pressure=q, **self.cap)
+            else:
+                inner = self.solve(shifted, mean_pressure=None, penetration=self.penetration + lift,
+                                   tol=inner_tol, initial_pressure=q, **self.cap)
+            iterations += inner.iterations
+            q, g, delta = inner.pressure, inner.gap, inner.penetration - lift
+            p = q + a
+            residual = self._residual(p, g, image)
+            if residual <= self.tol or not np.isfinite(residual):
+                break
+            history.append(residual)
+            if len(history) > STALL_ROUNDS and min(history[-STALL_ROUNDS:]) > STALL_DROP * min(history[:-STALL_ROUNDS]):
+                break  # too slow (a contact edge that moves a few elements a round): Newton takes over
+            inner_tol = max(min(inner_tol, INNER_FRACTION * residual), INNER_FLOOR * self.tol)
+            a = mix(a, image)
+        _, p_r, active, _, residual = self.measure.residual_of(p, g, largest=False)
+        return p, delta, g, np.where(active, p_r, 0.0), iterations, rounds, residual, residual <= self.tol
+
+    def _residual(self, p, g, image):
+        """:meth:`_Newton.residual_of` (mean interpenetration) in one sweep, writing the law's traction at
+        the gap ``g`` into ``image``."""
+        m, law = self.measure, self.law
+        code = sweeps.MAUGIS if law.model == "maugis" else sweeps.EXPONENTIAL
+        phi_sum, overlap = sweeps.law_residual(np.ascontiguousarray(p).ravel(), np.ascontiguousarray(g).ravel(),
+                                               code, law.peak_stress, law.range, MAUGIS_RAMP, m.c, image.reshape(-1))
+        residual = max(phi_sum / m.c, overlap) / (p.size * m.hs)
+        if m.control:
+            residual = max(residual, abs(float(p.mean()) - m.load) / m.pscale)
+        return residual
+
+
+class _Anderson:
+    """Anderson mixing of the fixed point ``x = T(x)`` of fields, kept within ``[lower, upper]``: the last
+    :data:`ANDERSON_DEPTH` differences of the iterates and of their residuals ``T(x) - x`` in ring
+    buffers, the least-squares weights from their Gram matrix, updated by one row a round (fused sweeps,
+    :mod:`._cohesive_sweeps`: numpy's passes and BLAS dot products, whose threads wait for busy cores,
+    cost as much a round as an FFT pair)."""
+
+    def __init__(self, size, lower, upper):
+        self.dx = np.zeros((ANDERSON_DEPTH, size))
+        self.df = np.zeros((ANDERSON_DEPTH, size))
+        self.last_x, self.last_f = np.zeros(size), np.zeros(size)
+        self.gram = np.zeros((ANDERSON_DEPTH, ANDERSON_DEPTH))
+        self.rhs = np.zeros(ANDERSON_DEPTH)
+        self.lower, self.upper = float(lower), float(upper)
+        self.rounds = 0
+
+    def __call__(self, x, image):
+        """The next iterate from ``x`` and ``T(x)`` (``image``), both of the same shape."""
+        shape = x.shape
+        x, image = np.ascontiguousarray(x).ravel(), np.ascontiguousarray(image).ravel()
+        row = (self.rounds - 1) % ANDERSON_DEPTH if self.rounds else -1
+        m = min(self.rounds, ANDERSON_DEPTH)
+        sweeps.anderson_record(x, image, self.last_x, self.last_f, self.dx, self.df, row, m, self.gram, self.rhs)
+        self.rounds += 1
+        if m == 0:
+            return np.clip(image, self.lower, self.upper).reshape(shape)
+        gram = self.gram[:m, :m]
+        gamma = np.linalg.lstsq(gram + 1e-14 * np.trace(gram) * np.eye(m), self.rhs[:m], rcond=None)[0]
+        out = np.empty_like(x)
+        sweeps.anderson_mix(x, image, self.dx, self.df, gamma, m, self.lower, self.upper, out)
+        return out.reshape(shape)
+
+
 class _Newton:
     """One semi-smooth Newton solve of the cohesive contact at one range."""
 
@@ -178,12 +334,17 @@ class _Newton:
         self.pscale = self.sigma0 + (abs(mean_pressure) if self.control else 0.0)
 
     def _evaluate(self, p, delta):
-        g = self.op(p) + self.h0 - delta
+        return self.residual_of(p, self.op(p) + self.h0 - delta)
+
+    def residual_of(self, p, g, largest=True):
+        """``(g, p_r, active, phi, residual)`` of the traction ``p`` and its gap ``g``; the interpenetration
+        term is the largest (``largest``) or the mean one."""
         p_r = p - self.law.traction(g)
         active = p_r > self.c * g
         phi = np.where(active, self.c * g, p_r)
-        residual = float(np.mean(np.abs(phi))) / self.c / self.hs
-        residual = max(residual, float(np.max(np.maximum(-g, 0.0))) / self.hs)
+        overlap = np.maximum(-g, 0.0)
+        overlap = float(np.max(overlap)) if largest else float(np.mean(overlap))
+        residual = max(float(np.mean(np.abs(phi))) / self.c, overlap) / self.hs
         if self.control:
             residual = max(residual, abs(float(p.mean()) - self.load) / self.pscale)
         return g, p_r, active, phi, residual

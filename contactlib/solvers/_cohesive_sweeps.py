@@ -1,0 +1,78 @@
+"""Fused element-wise passes of the frozen-traction cohesive iteration (numba, serial).
+
+Each round of :class:`contactlib.solvers.cohesive._FrozenTraction` evaluates the cohesive law at the new
+gap, the residual of the state, and an Anderson mixing step: in numpy some thirty passes over the grid
+and their temporaries, which cost as much per round as one or two Polonsky-Keer iterations (256^2). Here
+they are three sweeps. Arrays are flat and contiguous.
+"""
+
+from __future__ import annotations
+
+import math
+
+from .._numba import jit as _jit
+
+MAUGIS, EXPONENTIAL = 0, 1
+"""Codes of the cohesive laws (:class:`contactlib.Adhesion`'s ``model``) in the sweeps."""
+
+
+@_jit
+def law_residual(p, g, model, sigma0, range_, ramp, c, image):
+    """``image`` = the adhesive traction ``a(g)`` of the law (:meth:`contactlib.Adhesion.traction`,
+    Maugis' step as its ramp of half-width ``ramp * range_``); returns ``(sum |phi|, sum max(-g, 0))``
+    with ``phi = c g`` where the repulsive part ``p - a(g)`` exceeds ``c g``, else ``p - a(g)``."""
+    phi_sum = 0.0
+    overlap = 0.0
+    for i in range(p.size):
+        gi = g[i]
+        gp = max(gi, 0.0)
+        if model == MAUGIS:
+            share = ((1.0 + ramp) * range_ - gp) / (2.0 * ramp * range_)
+            a = -sigma0 * min(max(share, 0.0), 1.0)
+        else:
+            a = -sigma0 * math.exp(-gp / range_)
+        image[i] = a
+        repulsive = p[i] - a
+        cg = c * gi
+        phi_sum += abs(cg) if repulsive > cg else abs(repulsive)
+        overlap += max(-gi, 0.0)
+    return phi_sum, overlap
+
+
+@_jit
+def anderson_record(x, image, last_x, last_f, dx, df, row, m, gram, rhs):
+    """With ``f = image - x``: the differences ``dx[row] = x - last_x`` and ``df[row] = f - last_f`` (if
+    ``row >= 0``), then ``last_x = x``, ``last_f = f``; the Gram row ``gram[row, k] = df[row] . df[k]``
+    and ``rhs[k] = df[k] . f`` for ``k < m``. One sweep writes, then one contiguous pass per stored row."""
+    for i in range(x.size):
+        f = image[i] - x[i]
+        if row >= 0:
+            dx[row, i] = x[i] - last_x[i]
+            df[row, i] = f - last_f[i]
+        last_x[i] = x[i]
+        last_f[i] = f
+    for k in range(m):
+        dk = df[k]
+        s_f = 0.0
+        s_row = 0.0
+        for i in range(x.size):
+            s_f += dk[i] * last_f[i]
+            s_row += dk[i] * df[row, i]
+        rhs[k] = s_f
+        if row >= 0:
+            gram[row, k] = s_row
+            gram[k, row] = s_row
+
+
+@_jit
+def anderson_mix(x, image, dx, df, gamma, m, lower, upper, out):
+    """``out = image - sum_k gamma_k (dx[k] + df[k])`` (that is ``x + f - ...``), clipped to
+    ``[lower, upper]``: one contiguous pass per stored row."""
+    for i in range(x.size):
+        out[i] = image[i]
+    for k in range(m):
+        gk = gamma[k]
+        for i in range(x.size):
+            out[i] -= gk * (dx[k, i] + df[k, i])
+    for i in range(x.size):
+        out[i] = min(max(out[i], lower), upper)
