@@ -86,31 +86,18 @@ class TabulatedLaw:
 
     def force(self, d: np.ndarray) -> np.ndarray:
         """``P = f(d)`` [force], 0 for ``d <= 0``."""
-        d = np.asarray(d, dtype=float)
-        on = d > 0
-        out = np.zeros_like(d)
-        if np.any(on):
-            out[on] = np.exp(self._log_values(d[on], 1)[0])
-        return out
+        return _where_positive(d, lambda on: np.exp(self._log_values(on, 1)[0]))
 
     def slope(self, d: np.ndarray) -> np.ndarray:
         """``dP/dd`` [force/length], 0 for ``d <= 0``."""
-        d = np.asarray(d, dtype=float)
-        on = d > 0
-        out = np.zeros_like(d)
-        if np.any(on):
-            value, exponent = self._log_values(d[on], 1)
-            out[on] = np.exp(value) * exponent / d[on]
-        return out
+        def evaluate(on):
+            value, exponent = self._log_values(on, 1)
+            return np.exp(value) * exponent / on
+        return _where_positive(d, evaluate)
 
     def contact_radius(self, d: np.ndarray) -> np.ndarray:
         """Contact radius [length], 0 for ``d <= 0``."""
-        d = np.asarray(d, dtype=float)
-        on = d > 0
-        out = np.zeros_like(d)
-        if np.any(on):
-            out[on] = np.exp(self._log_values(d[on], 2)[0])
-        return out
+        return _where_positive(d, lambda on: np.exp(self._log_values(on, 2)[0]))
 
     def stiffness(self, force: np.ndarray) -> np.ndarray:
         """``dP/dd`` at the penetration that carries ``force`` [force/length], 0 for ``force <= 0``."""
@@ -203,3 +190,13 @@ def tabulated_law(drop: Callable[[np.ndarray], np.ndarray], *, footprint_radius:
     return TabulatedLaw(penetrations, force, radius, footprint_radius=footprint_radius,
                         attrs={"single_asperity_law": "tabulated", "law_points": int(points), "law_nodes": n,
                                "law_max_penetration": float(max_penetration), "law_E_star": contact_modulus(E, nu)})
+
+
+def _where_positive(d, evaluate) -> np.ndarray:
+    """``evaluate`` on the positive penetrations of ``d``, 0 elsewhere (out of contact)."""
+    d = np.asarray(d, dtype=float)
+    on = d > 0
+    out = np.zeros_like(d)
+    if np.any(on):
+        out[on] = evaluate(d[on])
+    return out
