@@ -19,6 +19,15 @@ include: "workflow/rules/measured.smk"
 
 onstart:
     record_run()
+    start_cluster()
+
+
+onsuccess:
+    stop_cluster()
+
+
+onerror:
+    stop_cluster()
 
 
 rule all:

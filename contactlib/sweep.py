@@ -378,26 +378,3 @@ def write_netcdf(ds: xr.Dataset, path: str | os.PathLike, *, sweep_dims: Iterabl
     path = Path(path)
     _write_atomic(path, lambda tmp: ds.to_netcdf(tmp, encoding=encoding, engine="netcdf4"))
     return path
-
-
-@contextlib.contextmanager
-def open_client(*, scheduler_address: str | None = None, n_workers: int = 2, threads_per_worker: int = 1,
-                log: Callable[[str], None] | None = None):
-    """A ``distributed.Client`` on an existing scheduler, or on a new ``LocalCluster`` of processes.
-
-    The dashboard address is logged; it is served where ``bokeh`` is installed (the ``workflow``
-    extra brings it), on Dask's usual port 8787 when that is free, another port otherwise.
-    """
-    from distributed import Client, LocalCluster
-
-    log = log or (lambda line: print(line, file=sys.stderr, flush=True))
-    if scheduler_address:
-        with Client(scheduler_address, timeout="60s") as client:
-            log(f"dask: scheduler {scheduler_address}, dashboard {client.dashboard_link}")
-            yield client
-        return
-    with LocalCluster(n_workers=n_workers, threads_per_worker=threads_per_worker, processes=True,
-                      dashboard_address=":8787") as cluster, Client(cluster) as client:
-        log(f"dask: LocalCluster {n_workers} workers x {threads_per_worker} threads, "
-            f"dashboard {client.dashboard_link}")
-        yield client

@@ -13,6 +13,7 @@ import pytest
 import xarray as xr
 
 from contactlib import studies, sweep
+from contactlib.cluster import open_client, shared_address
 
 distributed = pytest.importorskip("distributed")
 
@@ -73,7 +74,7 @@ def test_sweep_survives_a_killed_worker(cluster, tmp_path):
         if len(lines) == 4:  # a third of the way: kill one worker (its nanny and process)
             stop(victim, signal.SIGKILL)
 
-    with sweep.open_client(scheduler_address=address, log=lines.append) as client:
+    with open_client(scheduler_address=address, log=lines.append) as client:
         client.wait_for_workers(2, timeout=60)
         assert client.submit(sum, [1, 2]).result(timeout=60) == 3
         start_time = time.monotonic()
@@ -92,3 +93,36 @@ def test_sweep_survives_a_killed_worker(cluster, tmp_path):
     strip = lambda d: d.drop_vars("wall_time").drop_attrs()  # noqa: E731
     xr.testing.assert_identical(strip(ds), strip(serial))
     assert len(list((tmp_path / "ckpt").glob("*.pkl"))) == 24
+
+
+def test_shared_cluster_serves_clients_and_leaves_nothing_behind(tmp_path):
+    """`python -m contactlib.cluster` (the workflow's shared cluster): its address reaches a client, a sweep runs
+    on it, and SIGTERM stops it and removes its scheduler file; a client falls back when no server is alive."""
+    scheduler_file = tmp_path / "dask.json"
+    with open(tmp_path / "server.log", "w") as log:
+        env = dict(os.environ, PYTHONPATH=f"{ROOT}{os.pathsep}{os.environ.get('PYTHONPATH', '')}")
+        server = subprocess.Popen([sys.executable, "-m", "contactlib.cluster", "--scheduler-file", str(scheduler_file),
+                                   "--n-workers", "2"], stdout=log, stderr=subprocess.STDOUT, env=env,
+                                  start_new_session=True)
+    try:
+        address = shared_address(scheduler_file, timeout=120)
+        assert address and address.startswith("tcp://127.0.0.1:")
+        lines = []
+        with open_client(scheduler_file=scheduler_file, log=lines.append) as client:
+            client.wait_for_workers(2, timeout=60)
+            ds = sweep.run_grid(functools.partial(studies.area_load_point, **CONSTANTS),
+                                {"hurst": [0.8], "n": [64], "seed": [0, 1], "reduced_pressure": [0.05]}, client=client,
+                                labels=studies.STUDY_VARIABLES, progress=False)
+        assert lines == [f"dask: scheduler {address}, dashboard {lines[0].split('dashboard ')[1]}"]
+        assert (ds.status == 0).all()
+        server.terminate()
+        assert server.wait(timeout=30) == 0
+        assert not scheduler_file.exists()
+    finally:
+        stop(server, signal.SIGKILL)
+    # a record whose process is gone: no wait, the caller starts a cluster of its own
+    scheduler_file.write_text('{"pid": %d, "address": "tcp://127.0.0.1:1"}' % server.pid)
+    start_time = time.monotonic()
+    assert shared_address(scheduler_file, timeout=60) is None and time.monotonic() - start_time < 5
+    scheduler_file.unlink()
+    assert shared_address(scheduler_file, timeout=0.3) is None  # none ever started

@@ -70,6 +70,11 @@ def test_tiny_end_to_end_run_and_report(workdir):
     run = snakemake(workdir, "--cores", "2", "--configfile", "tiny.yaml", timeout=600)
     assert run.returncode == 0, run.stdout[-3000:] + run.stderr[-3000:]
     assert "dashboard" in run.stderr and "ETA" in run.stderr
+    # one cluster served every study (dask.shared), and it is gone with the run
+    assert "shared LocalCluster 2 workers" in (workdir / "logs" / "dask_cluster.log").read_text()
+    study_logs = list((workdir / "logs" / "run_study").glob("*.log"))
+    assert len(study_logs) >= 10 and all("dask: scheduler tcp://" in f.read_text() for f in study_logs)
+    assert not (workdir / ".snakemake" / "contactlib_dask.json").exists()
     results = workdir / "results"
     with xr.open_dataset(results / "area_load.nc") as ds:
         assert dict(ds.sizes) == {"hurst": 3, "n": 2, "seed": 2, "reduced_pressure": 4}  # 48 points

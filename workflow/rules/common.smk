@@ -1,5 +1,6 @@
 import json
 import os
+import subprocess
 import sys
 from pathlib import Path
 
@@ -69,10 +70,50 @@ def study_spec(wildcards):
     }
 
 
+# One Dask LocalCluster for every sweep of the run (config dask.shared): started by onstart when the run has
+# sweeps to do, stopped by onsuccess/onerror, ended with Snakemake if Snakemake is killed (contactlib.cluster).
+SHARED_CLUSTER_FILE = Path(".snakemake/contactlib_dask.json")
+SWEEP_RULES = {"run_study", "run_measured_study"}
+_cluster_process = []
+
+
+def shared_cluster():
+    return bool(config["dask"]["shared"]) and not config["dask"]["scheduler_address"]
+
+
+def shared_scheduler_file(wildcards):
+    return str(SHARED_CLUSTER_FILE) if shared_cluster() else ""
+
+
 def sweep_threads(wildcards):
-    """Cores the local Dask cluster occupies (one when the sweep goes to an existing scheduler)."""
+    """Cores the study's own Dask cluster occupies (one when its sweep goes to a shared or existing one)."""
     dask = config["dask"]
-    return 1 if dask["scheduler_address"] else dask["n_workers"] * dask["threads_per_worker"]
+    return 1 if (dask["scheduler_address"] or shared_cluster()) else dask["n_workers"] * dask["threads_per_worker"]
+
+
+def start_cluster():
+    """Start the run's shared cluster if a sweep will run (its workers take the run's cores)."""
+    if not shared_cluster() or not any(job.rule.name in SWEEP_RULES for job in workflow.dag.needrun_jobs()):
+        return
+    dask = config["dask"]
+    workers = max(1, min(dask["n_workers"], workflow.cores // dask["threads_per_worker"]))
+    SHARED_CLUSTER_FILE.unlink(missing_ok=True)
+    Path("logs").mkdir(exist_ok=True)
+    with open("logs/dask_cluster.log", "w") as log:
+        _cluster_process.append(subprocess.Popen(
+            [sys.executable, "-m", "contactlib.cluster", "--scheduler-file", str(SHARED_CLUSTER_FILE),
+             "--n-workers", str(workers), "--threads-per-worker", str(dask["threads_per_worker"])],
+            stdout=log, stderr=subprocess.STDOUT))
+
+
+def stop_cluster():
+    for process in _cluster_process:
+        process.terminate()
+        try:
+            process.wait(timeout=30)
+        except subprocess.TimeoutExpired:
+            process.kill()
+    _cluster_process.clear()
 
 
 def surfaces_of(study):

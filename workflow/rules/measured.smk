@@ -41,6 +41,7 @@ rule run_measured_study:
         material=lookup(dpath="material", within=config),
         solver=lookup(dpath="solver", within=config),
         dask=lookup(dpath="dask", within=config),
+        scheduler_file=shared_scheduler_file,
         checkpoints="results/checkpoints/{study}/{surface}",
     threads: sweep_threads
     log:

@@ -6,6 +6,7 @@ rule run_study:
         material=lookup(dpath="material", within=config),
         solver=lookup(dpath="solver", within=config),
         dask=lookup(dpath="dask", within=config),
+        scheduler_file=shared_scheduler_file,
         checkpoints="results/checkpoints/{study}",
     threads: sweep_threads
     log:

@@ -5,7 +5,7 @@ import json
 import os
 import sys
 
-from contactlib import lifeline, studies, sweep
+from contactlib import cluster, lifeline, studies, sweep
 
 
 def main(sm):
@@ -25,14 +25,17 @@ def main(sm):
     constants = {**material, **solver, **spec["constants"]}
     if study.get("ladder_dim"):  # e.g. every tol of the grid, so one solve serves them all
         constants[f"{study['ladder_dim']}_ladder"] = sorted(spec["grid"][study["ladder_dim"]])
-    if not dask["scheduler_address"]:  # a LocalCluster sized to the cores Snakemake gave this job
+    shared = dask.pop("shared")
+    if not dask["scheduler_address"] and not shared:  # a LocalCluster sized to the cores Snakemake gave this job
         dask["n_workers"] = max(1, min(dask["n_workers"], sm.threads // dask["threads_per_worker"]))
     config = {"study": spec, "material": material, "solver": {**solver, "warm_start": path_dim is not None},
               "dask": dask}
     # a swept nu is a coordinate, not a global attribute
     scene = {} if "nu" in spec["grid"] else {"nu": material["nu"], "E_star": material["E"] / (1 - material["nu"] ** 2)}
     inputs = study["dataset_attrs"](constants) if "dataset_attrs" in study else {}  # e.g. a measured file's checksum
-    with sweep.open_client(**dask, log=emit) as client:
+    # the run's shared cluster (started by the Snakefile's onstart), else one of this job's own
+    scheduler_file = sm.params.scheduler_file or None
+    with cluster.open_client(**dask, scheduler_file=scheduler_file, log=emit) as client:
         ds = sweep.run_grid(
             functools.partial(study["point"], **constants),
             spec["grid"],
