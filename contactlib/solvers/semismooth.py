@@ -43,7 +43,7 @@ def solve_semismooth(
     tol: float = 1e-8,
     max_iter: int = 10_000,
     initial_pressure: np.ndarray | None = None,
-    monitor: Callable[[int, float, Callable[[], ContactState]], None] | None = None,
+    monitor: Callable[[int, float, Callable[[], ContactState]], bool | None] | None = None,
     penetration: None = None,
     set_solver: Callable | None = None,
     name: str = "semismooth-newton",
@@ -52,7 +52,7 @@ def solve_semismooth(
 
     Same arguments and answer as :func:`.ccg.solve_polonsky_keer` under load control; ``max_iter``
     bounds the CG iterations over all sets, ``iterations`` counts them, ``monitor`` is called once per
-    set update. ``set_solver(hp, index, start, total, tol, max_iter) -> (p on the set, approach, iterations)``
+    set update (a true return stops the loop there, e.g. on a stall). ``set_solver(hp, index, start, total, tol, max_iter) -> (p on the set, approach, iterations)``
     replaces the two-level CG on each set (a non-symmetric ``operator``:
     :meth:`.krylov.ComplexCompliance.solve_on_set`); ``name`` is the solver name reported.
     """
@@ -90,9 +90,8 @@ def solve_semismooth(
                              displacement=displacement.reshape(shape), penetration=float(approach),
                              mean_pressure=float(positive.mean()), iterations=iterations, residual=residual,
                              converged=bool(changed == 0 and residual <= tol), solver=name)
-        if monitor is not None:
-            monitor(k, residual, lambda s=state: s)
-        if state.converged or iterations >= max_iter:
+        stop = monitor is not None and monitor(k, residual, lambda s=state: s)
+        if state.converged or iterations >= max_iter or stop:
             return state
         if changed == 0:  # the set holds: solve it tighter
             inner_tol = max(tol / 16, inner_tol / 100)
