@@ -295,29 +295,30 @@ class _Setup:
         if self.adhesion is not None:
             return adhesive_contact.run(self, self.adhesion)
         if self.body.coupling is not None:
-            if self._krylov_applies() and not splitting.loss_dominated(self.body.factor):
-                state = self._krylov()
-                if not state.converged:  # the method that converges for any monotone multiplier
+            first = None
+            if self._krylov_applies():
+                first = self._krylov()
+                if first.converged:
+                    return first
+            if self.operator.periodic and splitting.loss_dominated(self.body.factor):
+                state = self._splitting()
+            else:
+                state = solve_coupled(self._symmetric, self.body.coupling, self.values, **self.solver_args)
+                if not state.converged and self.operator.periodic:  # a stalled outer loop: the method that needs no split
                     fallback = self._splitting()
                     state = fallback if fallback.residual < state.residual else state
-                return state
-            if self.operator.periodic and splitting.loss_dominated(self.body.factor):
-                return self._splitting()
-            state = solve_coupled(self._symmetric, self.body.coupling, self.values, **self.solver_args)
-            if not state.converged and self.operator.periodic:  # a stalled outer loop: the method that needs no split
-                fallback = self._splitting()
-                state = fallback if fallback.residual < state.residual else state
-            return state
+            return state if first is None or state.residual <= first.residual else first
         if self.method == "cg":
             return self._symmetric(self.values, monitor=monitor, verify_below=verify_below, **self.solver_args)
         args = {k: v for k, v in self.solver_args.items() if k != "initial_pressure"}
         return solve_active_set(self.operator, self.values, **args)
 
     def _krylov_applies(self) -> bool:
-        """Periodic, load-controlled and not plate-like (whose soft long waves need the coarse space of the
-        symmetric semismooth solver): the semismooth Newton loop with GMRES on the complex multiplier."""
+        """Periodic, load-controlled, not plate-like (whose soft long waves need the coarse space of the
+        symmetric semismooth solver) and not loss-dominated (where the sets cycle; Douglas-Rachford converges):
+        the semismooth Newton loop with GMRES on the complex multiplier, the other solvers its fallback."""
         return (self.operator.periodic and self.solver_args["mean_pressure"] is not None
-                and self.operator.preconditionable)
+                and self.operator.preconditionable and not splitting.loss_dominated(self.body.factor))
 
     def _krylov(self) -> ContactState:
         """The semismooth Newton loop with GMRES on each contact set (:mod:`contactlib.solvers.krylov`), from the
