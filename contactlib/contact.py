@@ -19,6 +19,7 @@ from .grid import Grid
 from .inputs import check_friction, check_loads, check_tolerance, check_velocity, grid_of, periodic_of, \
     touches_edge
 from .operators import KERNELS
+from .solvers import krylov
 from .solvers import (ContactState, solve_active_set, solve_coupled, solve_periodic_displacement, solve_polonsky_keer,
                       solve_semismooth, splitting)
 
@@ -294,17 +295,46 @@ class _Setup:
         if self.adhesion is not None:
             return adhesive_contact.run(self, self.adhesion)
         if self.body.coupling is not None:
+            first = None
+            if self._krylov_applies():
+                first = self._krylov()
+                if first.converged:
+                    return first
             if self.operator.periodic and splitting.loss_dominated(self.body.factor):
-                return self._splitting()
-            state = solve_coupled(self._symmetric, self.body.coupling, self.values, **self.solver_args)
-            if not state.converged and self.operator.periodic:  # a stalled outer loop: the method that needs no split
-                fallback = self._splitting()
-                state = fallback if fallback.residual < state.residual else state
-            return state
+                state = self._splitting()
+            else:
+                state = solve_coupled(self._symmetric, self.body.coupling, self.values, **self.solver_args)
+                if not state.converged and self.operator.periodic:  # a stalled outer loop: the method that needs no split
+                    fallback = self._splitting()
+                    state = fallback if fallback.residual < state.residual else state
+            return state if first is None or state.residual <= first.residual else first
         if self.method == "cg":
             return self._symmetric(self.values, monitor=monitor, verify_below=verify_below, **self.solver_args)
         args = {k: v for k, v in self.solver_args.items() if k != "initial_pressure"}
         return solve_active_set(self.operator, self.values, **args)
+
+    def _krylov_applies(self) -> bool:
+        """Periodic, load-controlled, not plate-like (whose soft long waves need the coarse space of the
+        symmetric semismooth solver) and not loss-dominated (where the sets cycle; Douglas-Rachford converges):
+        the semismooth Newton loop with GMRES on the complex multiplier, the other solvers its fallback."""
+        return (self.operator.periodic and self.solver_args["mean_pressure"] is not None
+                and self.operator.preconditionable and not splitting.loss_dominated(self.body.factor))
+
+    def _krylov(self) -> ContactState:
+        """The semismooth Newton loop with GMRES on each contact set (:mod:`contactlib.solvers.krylov`), from the
+        warm start or from the symmetric part's constrained CG stopped early."""
+        args = self.solver_args
+        body = krylov.ComplexCompliance(splitting.fourier_multiplier(self.body.compliance, self.body.coupling),
+                                        self.grid)
+        start, used = args["initial_pressure"], 0
+        if start is None or not np.any(start > 0):
+            first = self._symmetric(self.values, **{**args, "tol": max(krylov.START_TOL, args["tol"])})
+            start, used = first.pressure, first.iterations
+        stall = krylov.Stall()
+        state = solve_semismooth(body, self.values, mean_pressure=args["mean_pressure"], tol=args["tol"],
+                                 max_iter=args["max_iter"], initial_pressure=start, set_solver=body.solve_on_set,
+                                 name="semismooth-gmres", monitor=stall)
+        return dataclasses.replace(state, iterations=state.iterations + used, outer_iterations=stall.sets)
 
     def _splitting(self) -> ContactState:
         """Douglas-Rachford on the whole complex multiplier (:mod:`contactlib.solvers.splitting`)."""

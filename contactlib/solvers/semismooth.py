@@ -21,6 +21,7 @@ in all from 2 % to 74 % contact, where Polonsky-Keer stalls at residuals of 2e-2
 from __future__ import annotations
 
 from collections.abc import Callable
+from functools import partial
 
 import numpy as np
 
@@ -42,14 +43,18 @@ def solve_semismooth(
     tol: float = 1e-8,
     max_iter: int = 10_000,
     initial_pressure: np.ndarray | None = None,
-    monitor: Callable[[int, float, Callable[[], ContactState]], None] | None = None,
+    monitor: Callable[[int, float, Callable[[], ContactState]], bool | None] | None = None,
     penetration: None = None,
+    set_solver: Callable | None = None,
+    name: str = "semismooth-newton",
 ) -> ContactState:
     """Pressure under ``heights`` [length] at ``mean_pressure`` [pressure] on a periodic ``operator``.
 
     Same arguments and answer as :func:`.ccg.solve_polonsky_keer` under load control; ``max_iter``
     bounds the CG iterations over all sets, ``iterations`` counts them, ``monitor`` is called once per
-    set update.
+    set update (a true return stops the loop there, e.g. on a stall). ``set_solver(hp, index, start, total, tol, max_iter) -> (p on the set, approach, iterations)``
+    replaces the two-level CG on each set (a non-symmetric ``operator``:
+    :meth:`.krylov.ComplexCompliance.solve_on_set`); ``name`` is the solver name reported.
     """
     if penetration is not None:
         raise ValueError("solve_semismooth: load control only (give mean_pressure, not penetration)")
@@ -57,7 +62,9 @@ def solve_semismooth(
     hp = (heights - heights.max()).reshape(-1)
     scale = height_scale(heights)
     total = n * float(mean_pressure)
-    modes = soft_modes(operator.grid, operator.multiplier * float(np.prod(operator.work_shape)), operator.E_star)
+    if set_solver is None:
+        modes = soft_modes(operator.grid, operator.multiplier * float(np.prod(operator.work_shape)), operator.E_star)
+        set_solver = partial(_solve_on_set, operator, modes)
     if initial_pressure is not None and np.any(initial_pressure > 0):
         p = np.maximum(np.asarray(initial_pressure, dtype=float).reshape(-1), 0.0)
         active = p > 0
@@ -69,8 +76,7 @@ def solve_semismooth(
     state = None
     for k in range(1, MAX_SETS + 1):
         index = np.flatnonzero(active)
-        p_a, approach, used = _solve_on_set(operator, modes, hp, index, p[index], total,
-                                            inner_tol * scale, max_iter - iterations)
+        p_a, approach, used = set_solver(hp, index, p[index], total, inner_tol * scale, max_iter - iterations)
         iterations += used
         p = np.zeros(n)
         p[index] = p_a
@@ -83,10 +89,9 @@ def solve_semismooth(
         state = ContactState(pressure=positive.reshape(shape), gap=gap.reshape(shape),
                              displacement=displacement.reshape(shape), penetration=float(approach),
                              mean_pressure=float(positive.mean()), iterations=iterations, residual=residual,
-                             converged=bool(changed == 0 and residual <= tol), solver="semismooth-newton")
-        if monitor is not None:
-            monitor(k, residual, lambda s=state: s)
-        if state.converged or iterations >= max_iter:
+                             converged=bool(changed == 0 and residual <= tol), solver=name)
+        stop = monitor is not None and monitor(k, residual, lambda s=state: s)
+        if state.converged or iterations >= max_iter or stop:
             return state
         if changed == 0:  # the set holds: solve it tighter
             inner_tol = max(tol / 16, inner_tol / 100)

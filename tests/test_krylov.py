@@ -1,0 +1,134 @@
+"""The semismooth Newton loop with GMRES on the complex multiplier (contactlib.solvers.krylov): its linear solve
+against a dense one, its answer against the fixed point on the skew part and Douglas-Rachford, the dispatch, and
+the hard cases."""
+
+import numpy as np
+import pytest
+
+import contactlib
+from contactlib import Elastic, Layer, Viscoelastic
+from contactlib.contact import _setup
+from contactlib.solvers import krylov, solve_coupled
+from contactlib.solvers.splitting import fourier_multiplier, solve_splitting
+
+SLS_10 = Viscoelastic.standard_linear_solid(E0=1.0, E_inf=10.0, tau=1.0, nu=0.5)
+GLASSY_1000 = Viscoelastic.standard_linear_solid(E0=1.0, E_inf=1000.0, tau=1.0, nu=0.5)
+
+
+def surface(n, dim, seed=3):
+    return contactlib.surfaces.self_affine(n, hurst=0.8, q_roll=1, q_cutoff=min(64, n // 4), rms_slope=0.1, seed=seed,
+                                           dim=dim)
+
+
+def setup(h, material, mean_pressure, *, velocity=None, friction=0.0, layer=None, tol=1e-10, penetration=None):
+    return _setup(h, material=material, mean_pressure=mean_pressure, penetration=penetration, periodic=True, tol=tol,
+                  max_iter=10_000, kernel="spectral", method="cg", length=None, initial_pressure=None,
+                  target_error=None, layer=layer, friction=friction, sliding_direction=0.0 if friction else None,
+                  sliding_velocity=velocity)
+
+
+def test_gmres_solves_a_dense_nonsymmetric_system():
+    """A positive-real non-symmetric system: GMRES (restarted, preconditioned by a rough inverse) reaches the dense
+    solution, and the side functional it carries equals the functional of the answer."""
+    rng = np.random.default_rng(0)
+    n = 60
+    skew = rng.normal(size=(n, n))
+    A = np.eye(n) * 4 + 0.3 * rng.normal(size=(n, n)) + (skew - skew.T)
+    b = rng.normal(size=n)
+    weights = rng.normal(size=n)
+    diagonal = 1 / np.diag(A)
+    x, used, side = krylov.gmres(lambda v: (A @ v, float(weights @ v)), lambda v: diagonal * v, b, np.zeros(n),
+                                 1e-12, 500, restart=10)
+    exact = np.linalg.solve(A, b)
+    assert np.linalg.norm(x - exact) / np.linalg.norm(exact) < 1e-10
+    assert side == pytest.approx(float(weights @ exact), rel=1e-9)
+    assert 10 < used < 500  # it restarted, and converged
+
+
+CASES = {
+    "friction 1D half-space nu 0.3": dict(dim=1, material=Elastic(1.0, 0.3), P=0.05, friction=1.0),
+    "friction 2D half-space nu 0.3": dict(dim=2, material=Elastic(1.0, 0.3), P=0.05, friction=1.0),
+    "friction 1D confined layer nu 0.5": dict(dim=1, material=Elastic(1.0, 0.5), P=0.05, friction=1.0, q0h=1.0),
+    "friction 2D confined layer nu 0.3": dict(dim=2, material=Elastic(1.0, 0.3), P=0.05, friction=0.5, q0h=1.0),
+    "viscoelastic 1D": dict(dim=1, material=SLS_10, P=0.05, zeta=1.0),
+    "viscoelastic 2D, friction": dict(dim=2, material=SLS_10, P=0.05, zeta=0.3, friction=0.5),
+}
+
+
+@pytest.mark.parametrize("case", CASES)
+def test_agrees_with_the_existing_solvers(case):
+    """At tol 1e-10 the pressure agrees within 1e-6 (relative L2) with the fixed point on the skew part and with
+    Douglas-Rachford, and the approach within 1e-6."""
+    c = CASES[case]
+    h = surface(1024 if c["dim"] == 1 else 64, c["dim"])
+    length = float(h.x[1] - h.x[0]) * h.sizes["x"]
+    layer = Layer(c["q0h"] * length / (2 * np.pi)) if "q0h" in c else None
+    velocity = None if "zeta" not in c else (c["zeta"] * length / (2 * np.pi),) + (0.0,) * (c["dim"] - 1)
+    s = setup(h, c["material"], c["P"], velocity=velocity, friction=c.get("friction", 0.0), layer=layer)
+    assert s.body.coupling is not None and s._krylov_applies()
+    state = s._krylov()
+    assert state.converged and state.residual <= 1e-10 and state.solver == "semismooth-gmres"
+    assert state.mean_pressure == pytest.approx(c["P"], rel=1e-12)
+    for other in (solve_coupled(s._symmetric, s.body.coupling, s.values, **s.solver_args),
+                  solve_splitting(fourier_multiplier(s.body.compliance, s.body.coupling), s.values, **s.solver_args)):
+        assert other.converged
+        assert np.linalg.norm(state.pressure - other.pressure) / np.linalg.norm(other.pressure) < 1e-6
+        assert state.penetration == pytest.approx(other.penetration, rel=1e-6)
+
+
+def test_solve_dispatches_here_and_reports():
+    """A periodic load-controlled friction solve runs here: solver name, set updates as outer iterations, the
+    residual; penetration control keeps the fixed point on the skew part."""
+    h = surface(64, 2)
+    out = contactlib.solve(h, E=1.0, nu=0.3, mean_pressure=0.05, friction=0.8, tol=1e-8)
+    assert out.attrs["solver"] == "semismooth-gmres" and out.attrs["converged"] == 1
+    assert float(out.residual) <= 1e-8 and int(out.outer_iterations) >= 2
+    pushed = contactlib.solve(h, E=1.0, nu=0.3, penetration=float(out.penetration), friction=0.8, tol=1e-8)
+    assert pushed.attrs["solver"].startswith("coupled")
+    assert float(pushed.mean_pressure) == pytest.approx(0.05, rel=1e-5)
+
+
+@pytest.mark.parametrize("scene", ["thin confined layer, mu 1", "glassy 1000 at zeta 1", "full contact"])
+def test_hard_cases_converge_here(scene):
+    """q0 h = 0.1, nu = 0.5, mu = 1 (max |W|/K = 15, the |W| split); E_inf/E0 = 1000 at V tau q0 = 1; a load at full
+    contact: the Newton loop itself converges (no fallback)."""
+    h = surface(1024, 1)
+    length = float(h.x[1] - h.x[0]) * h.sizes["x"]
+    if scene.startswith("thin"):
+        s = setup(h, Elastic(1.0, 0.5), 0.05, friction=1.0, layer=Layer(0.1 * length / (2 * np.pi)), tol=1e-8)
+    elif scene.startswith("glassy"):
+        s = setup(h, GLASSY_1000, 0.5, velocity=(length / (2 * np.pi),), tol=1e-8)
+    else:
+        s = setup(h, SLS_10, 2.0, velocity=(length / (2 * np.pi),), tol=1e-8)
+    state = s._krylov()
+    assert state.converged and state.residual <= 1e-8
+    if scene == "full contact":
+        assert np.all(state.pressure > 0)
+
+
+def test_stall_stops_the_loop_and_solve_falls_back(monkeypatch):
+    """Loss-dominated (E_inf/E0 = 1000 at V tau q0 = 1e-3, where the sets cycle): forced through the Newton loop it
+    stops on the stall rule, not after every allowed set, and solve answers with Douglas-Rachford."""
+    from contactlib.contact import _Setup
+
+    h = surface(1024, 1)
+    length = float(h.x[1] - h.x[0]) * h.sizes["x"]
+    s = setup(h, GLASSY_1000, 0.5, velocity=(1e-3 * length / (2 * np.pi),), tol=1e-8)
+    state = s._krylov()
+    assert not state.converged and state.outer_iterations < 100
+    monkeypatch.setattr(_Setup, "_krylov_applies", lambda self: True)
+    out = contactlib.solve(h, material=GLASSY_1000, mean_pressure=0.5, sliding_velocity=1e-3 * length / (2 * np.pi),
+                           tol=1e-8)
+    assert out.attrs["solver"] == "douglas-rachford" and out.attrs["converged"] == 1
+
+
+def test_unconverged_is_reported_with_its_residual():
+    """max_iter bounds the GMRES iterations over all sets: the state says it did not converge and how far it got
+    (solve then tries the fallbacks, and raises ConvergenceError if they fail too: test_splitting)."""
+    h = surface(64, 2)
+    s = _setup(h, material=Elastic(1.0, 0.3), mean_pressure=0.05, penetration=None, periodic=True, tol=1e-8,
+               max_iter=3, kernel="spectral", method="cg", length=None, initial_pressure=np.ones(h.shape),
+               target_error=None, layer=None, friction=0.8, sliding_direction=0.0, sliding_velocity=None)
+    state = s._krylov()
+    assert not state.converged and state.residual > 1e-8 and np.isfinite(state.residual)
+    assert state.iterations <= 3 + 2  # the last set's solve may finish its restart cycle's bookkeeping
