@@ -421,16 +421,19 @@ class _Setup:
 def constrained_solve(operator, heights, *, monitor=None, verify_below=None, restart_fraction=None,
                       **args) -> ContactState:
     """Frictionless contact on a symmetric compliance: Polonsky-Keer, or its dual under periodic displacement
-    control, where the primal iteration cannot be preconditioned (:mod:`contactlib.solvers.dual`).
+    control, where the primal iteration cannot be preconditioned (:mod:`contactlib.solvers.dual`), or, on a
+    plate-like body (not :attr:`~contactlib.operators.Compliance.preconditionable`), the semismooth Newton
+    method with a coarse space under either control (:mod:`contactlib.solvers.semismooth`).
     ``args``: ``mean_pressure``, ``penetration`` (one of them None), ``tol``, ``max_iter``, ``initial_pressure``;
     ``restart_fraction``: Polonsky-Keer's (default :data:`contactlib.solvers.ccg.RESTART_FRACTION`; the dual
     restarts on every re-entry)."""
+    if not operator.preconditionable:
+        # a plate-like body (a thin remote-pressure layer): its soft long waves need a coarse space, under
+        # either control (the dual iteration stalled there beyond about 5 % contact at q0 h = 0.1)
+        return solve_semismooth(operator, heights, monitor=monitor, **args)
     if not operator.definite and args["penetration"] is not None:
         args = {k: v for k, v in args.items() if k != "mean_pressure"}
         return solve_periodic_displacement(operator, heights, monitor=monitor, verify_below=verify_below, **args)
-    if not operator.preconditionable and args["mean_pressure"] is not None:
-        # a plate-like body (a thin remote-pressure layer): its soft long waves need a coarse space
-        return solve_semismooth(operator, heights, monitor=monitor, **args)
     if restart_fraction is not None:
         args["restart_fraction"] = restart_fraction
     return solve_polonsky_keer(operator, heights, monitor=monitor, **args)

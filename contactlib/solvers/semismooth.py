@@ -1,4 +1,4 @@
-"""Load-controlled contact on plate-like bodies: semismooth Newton with a two-level CG.
+"""Contact on plate-like bodies, load or displacement control: semismooth Newton with a two-level CG.
 
 A thin remote-pressure layer stalls the constrained CG of :mod:`.ccg` (see
 :data:`contactlib.operators.PRECONDITION_SOFTENING`): its contact set changes at every step, so the
@@ -16,15 +16,27 @@ restricted to the set removes them. This solver separates the two difficulties.
 
 Measured on a 16384-point profile at q0 h = 0.1 (nu = 0.3): 9-14 set updates and 270-420 CG iterations
 in all from 2 % to 74 % contact, where Polonsky-Keer stalls at residuals of 2e-2 to 0.4.
+
+Displacement control (``penetration`` fixed, the load free). A remote-pressure layer has a rigid-body mode,
+so its displacements are zero-mean and the penetration is measured against the mean deformed plane, as on a
+periodic half-space. On a set ``A`` that is not the whole grid the problem ``K_AA p = hp_A + d`` is still
+well posed: ``K`` is positive semi-definite with only the constant in its null space, and a field that
+vanishes off ``A`` is not constant, so ``K_AA`` is definite. It is solved through the load-controlled
+system above, which is linear in the load ``T = sum p``: ``p = p_T + (T' - T) p_1``, approach ``a_T +
+(T' - T) a_1``, with ``(p_1, a_1)`` the answer to a unit load and no heights, so ``T' = T + (d - a_T) /
+a_1`` (``a_1 = 1 / (1^T K_AA^-1 1) > 0``: the Newton step of the joint problem in ``p`` and the load). Two
+CG solves per set, each warm-started; at full contact ``a_1 = 0`` and the load is undetermined (refused
+before, by :func:`contactlib.solve`). The dual iteration (:mod:`.dual`) stalled here beyond about 5 %
+contact at q0 h = 0.1.
 """
 
 from __future__ import annotations
 
 from collections.abc import Callable
-from functools import partial
 
 import numpy as np
 
+from .ccg import _zero_state
 from .coarse import TwoLevel, soft_modes
 from .state import ContactState, contact_residual, dot, height_scale
 
@@ -39,44 +51,66 @@ def solve_semismooth(
     operator,
     heights: np.ndarray,
     *,
-    mean_pressure: float,
+    mean_pressure: float | None = None,
+    penetration: float | None = None,
     tol: float = 1e-8,
     max_iter: int = 10_000,
     initial_pressure: np.ndarray | None = None,
     monitor: Callable[[int, float, Callable[[], ContactState]], bool | None] | None = None,
-    penetration: None = None,
     set_solver: Callable | None = None,
     name: str = "semismooth-newton",
 ) -> ContactState:
-    """Pressure under ``heights`` [length] at ``mean_pressure`` [pressure] on a periodic ``operator``.
+    """Pressure under ``heights`` [length] at ``mean_pressure`` [pressure] or ``penetration`` [length, from
+    first contact, against the mean deformed plane] on a periodic ``operator`` (exactly one of the two).
 
-    Same arguments and answer as :func:`.ccg.solve_polonsky_keer` under load control; ``max_iter``
-    bounds the CG iterations over all sets, ``iterations`` counts them, ``monitor`` is called once per
-    set update (a true return stops the loop there, e.g. on a stall). ``set_solver(hp, index, start, total, tol, max_iter) -> (p on the set, approach, iterations)``
-    replaces the two-level CG on each set (a non-symmetric ``operator``:
-    :meth:`.krylov.ComplexCompliance.solve_on_set`); ``name`` is the solver name reported.
+    Same arguments and answer as :func:`.ccg.solve_polonsky_keer`; ``max_iter`` bounds the CG iterations over
+    all sets, ``iterations`` counts them, ``monitor`` is called once per set update (a true return stops the
+    loop there, e.g. on a stall). ``set_solver(hp, index, start, total, tol, max_iter) -> (p on the set,
+    approach, iterations)`` replaces the two-level CG on each set (a non-symmetric ``operator``:
+    :meth:`.krylov.ComplexCompliance.solve_on_set`; load control only); ``name`` is the solver name reported.
     """
-    if penetration is not None:
-        raise ValueError("solve_semismooth: load control only (give mean_pressure, not penetration)")
+    load_control = mean_pressure is not None
+    if load_control == (penetration is not None):
+        raise ValueError("solve_semismooth: give exactly one of mean_pressure and penetration")
+    if set_solver is not None and not load_control:
+        raise ValueError("solve_semismooth: a set_solver works under load control only (give mean_pressure)")
     shape, n = heights.shape, heights.size
     hp = (heights - heights.max()).reshape(-1)
     scale = height_scale(heights)
-    total = n * float(mean_pressure)
-    if set_solver is None:
-        modes = soft_modes(operator.grid, operator.multiplier * float(np.prod(operator.work_shape)), operator.E_star)
-        set_solver = partial(_solve_on_set, operator, modes)
+    if not load_control and not np.any(hp + penetration > 0):
+        return _zero_state(heights, penetration=float(penetration))
+    total = n * float(mean_pressure) if load_control else None
+    modes = None if set_solver is not None else soft_modes(
+        operator.grid, operator.multiplier * float(np.prod(operator.work_shape)), operator.E_star)
     if initial_pressure is not None and np.any(initial_pressure > 0):
         p = np.maximum(np.asarray(initial_pressure, dtype=float).reshape(-1), 0.0)
         active = p > 0
+        if not load_control:
+            total = float(p.sum())
     else:
         p = np.zeros(n)
-        active = hp >= np.quantile(hp, 1 - START_FRACTION)
+        # cold: the highest points (load control), the bearing area (displacement control)
+        active = hp >= np.quantile(hp, 1 - START_FRACTION) if load_control else hp + penetration > 0
+    unit, unit_approach = np.zeros(n), None  # displacement control: the answer to a unit load on the set
     iterations, residual, inner_tol = 0, np.inf, 1e-3
     seen: set[bytes] = set()
     state = None
     for k in range(1, MAX_SETS + 1):
         index = np.flatnonzero(active)
-        p_a, approach, used = set_solver(hp, index, p[index], total, inner_tol * scale, max_iter - iterations)
+        budget = max_iter - iterations
+        if set_solver is not None:
+            p_a, approach, used = set_solver(hp, index, p[index], total, inner_tol * scale, budget)
+        else:
+            preconditioner = TwoLevel(operator, modes, index)
+            if total is None:  # a cold start: the load of the bearing area's rigid punch is found below
+                total = 0.0
+            p_a, approach, used = _solve_on_set(operator, preconditioner, hp, index, p[index], total,
+                                                inner_tol * scale, budget)
+        if not load_control:
+            p_a, approach, total, unit_approach, more = _fix_approach(
+                operator, preconditioner, index, unit, unit_approach, p_a, approach, total, float(penetration),
+                inner_tol * scale, budget - used)
+            used += more
         iterations += used
         p = np.zeros(n)
         p[index] = p_a
@@ -103,18 +137,54 @@ def solve_semismooth(
         active = following
         if not active.any():  # cannot happen with a positive load; keep the highest point
             active = hp == 0.0
+        if not load_control and active.all():
+            raise ValueError(f"penetration {penetration!r} reaches full contact on this body: the load is then "
+                             "undetermined; give mean_pressure instead")
         inner_tol = min(inner_tol, max(tol / 16, 1e-3 * changed / n))
     return state
 
 
-def _solve_on_set(operator, modes, hp, index, start, total, tol, max_iter):
+def _fix_approach(operator, preconditioner, index, unit, unit_approach, p_a, approach, total, penetration, tol,
+                  max_iter):
+    """Displacement control on a set: move the load ``total`` so the approach is ``penetration``.
+
+    ``(p_a, approach)`` solve the set at load ``total``; ``unit`` (full field, updated in place) and
+    ``unit_approach`` are the last answer to a unit load (its warm start, and the scale ``a_1`` of its
+    tolerance; None at first, then the upper bound ``mean(K 1_A) / |A|`` stands in). The unit solve's error
+    enters times the load change ``|penetration - approach| / a_1``, so its tolerance is ``tol`` over that
+    change (and at most ``1e-3 a_1``). Returns ``(p_a, penetration, total, a_1, CG iterations)``."""
+    warm = unit_approach is not None
+    if not warm:
+        field = np.zeros(unit.size)
+        field[index] = 1.0 / index.size
+        unit_approach = float(operator(field.reshape(operator.grid.shape)).reshape(-1)[index].mean())
+    zero = np.zeros(unit.size)
+    miss = max(abs(penetration - approach), 1e-300)
+    used = 0
+    for _ in range(3):  # a stale scale can make the tolerance too loose: solve again, warm
+        unit_tol = min(tol * unit_approach / miss, 1e-3 * unit_approach)
+        start = unit[index] if warm else np.full(index.size, 1.0 / index.size)
+        u_a, a1, more = _solve_on_set(operator, preconditioner, zero, index, start, 1.0, unit_tol, max_iter - used)
+        used += more
+        if not a1 > 0:
+            raise ValueError(f"penetration control: the contact set of {index.size} points takes no load (unit-load "
+                             f"approach {a1:.3e}); give mean_pressure instead")
+        unit[:] = 0.0
+        unit[index] = u_a
+        warm, stale, unit_approach = True, unit_approach, a1
+        if a1 >= 0.5 * stale:
+            break
+    step = (penetration - approach) / a1
+    return p_a + step * u_a, penetration, total + step, a1, used
+
+
+def _solve_on_set(operator, preconditioner, hp, index, start, total, tol, max_iter):
     """``(p on the set, approach, iterations)``: CG for ``K_AA p = hp_A + approach``, ``sum p = total``,
     stopping when the centred gap on the set is at most ``tol`` [length] everywhere."""
     shape = operator.grid.shape
     n_a = index.size
     start = np.where(np.isfinite(start), start, 0.0)
     p = start + (total - start.sum()) / n_a
-    preconditioner = TwoLevel(operator, modes, index)
 
     def K(field):
         full = np.zeros(int(np.prod(shape)))

@@ -4,8 +4,9 @@ sliding on a thin confined viscoelastic layer against ``zeta = V tau q0``, with 
 speed range: the layer's geometric coupling does not depend on the speed.
 
 The scene of :mod:`._sliding_layer` (dimensionless, ``L = 1``, ``nu = 0.5``), the layer a standard linear
-solid. A thinner layer than the default ``q0 h = 1.5`` with ``mu_c = 0.8`` is refused by
-:func:`contactlib.solve`: the lagged coupling makes the normal operator's symmetric part negative.
+solid. Below ``q0 h`` of 1.2-1.5 with ``mu_c = 0.8`` the lagged coupling makes the normal operator's
+symmetric part negative at the longest waves: not monotone, but well posed on a grid that resolves the layer
+(:mod:`contactlib.bodies`), and solved down to ``q0 h = 0.1``.
 """
 
 from __future__ import annotations
