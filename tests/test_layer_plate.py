@@ -156,3 +156,24 @@ def test_plate_penetration_control_converges_where_the_dual_stalls():
     assert not dual.converged and dual.residual > 0.1
     fixed = contactlib.solve(h, E=1.0, nu=0.3, penetration=float(load.penetration), layer=_layer(), tol=1e-10)
     assert fixed.attrs["converged"] == 1 and float(fixed.residual) <= 1e-10
+
+
+def test_coarse_space_is_reused_on_a_repeated_set_only():
+    """A frictional plate's outer loop returns to the set it left: the two-level preconditioner built there is
+    reused (same object); another set gets its own, and a reused one acts as a fresh build would."""
+    from contactlib.solvers.coarse import TwoLevel, soft_modes, two_level
+
+    h = _scene(256, 1)
+    body = body_model(Grid(h.shape, (1.0,)), material=Elastic(1.0, 0.3), layer=_layer(), friction=0.0,
+                      direction=0.0, tol=1e-8, kernel="spectral", periodic=True)
+    op = body.compliance
+    modes = soft_modes(op.grid, op.multiplier * float(np.prod(op.work_shape)), op.E_star)
+    assert modes.shape[0] > 0
+    first, other = np.arange(0, 256, 3), np.arange(0, 256, 5)
+    built = two_level(op, modes, first)
+    assert two_level(op, modes, first.copy()) is built
+    assert two_level(op, modes, other) is not built and two_level(op, modes, first) is built
+    r = np.random.default_rng(0).standard_normal(first.size)
+    r -= r.mean()
+    np.testing.assert_allclose(built.apply(r), TwoLevel(op, modes, first).apply(r), rtol=0, atol=1e-12 * np.abs(
+        built.apply(r)).max())

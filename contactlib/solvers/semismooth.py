@@ -37,7 +37,7 @@ from collections.abc import Callable
 import numpy as np
 
 from .ccg import _zero_state
-from .coarse import TwoLevel, soft_modes
+from .coarse import soft_modes, two_level
 from .state import ContactState, contact_residual, dot, height_scale
 
 MAX_SETS = 200
@@ -101,7 +101,7 @@ def solve_semismooth(
         if set_solver is not None:
             p_a, approach, used = set_solver(hp, index, p[index], total, inner_tol * scale, budget)
         else:
-            preconditioner = TwoLevel(operator, modes, index)
+            preconditioner = two_level(operator, modes, index)
             if total is None:  # a cold start: the load of the bearing area's rigid punch is found below
                 total = 0.0
             p_a, approach, used = _solve_on_set(operator, preconditioner, hp, index, p[index], total,
