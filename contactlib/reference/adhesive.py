@@ -103,7 +103,7 @@ def jkr_limit(value_1, lam_1: float, value_2, lam_2: float):
     curves plus a correction in ``1 / lambda^2`` (the next one is ``O(lambda^-4)``, with coefficients that
     grow as ``A`` falls or rises). Applied to Maugis' own loads at lambda = 2 and 2.5 the limit is within
     1.4 % of ``|P_c|`` of JKR's over 0.88-1.3 a_c (2.4 % at 1.4 a_c, 3.6 % at 1.5 a_c); at lambda = 2 and
-    3, 1.0 % (1.8 %, 2.6 %). Pass values at the same contact radius (or the same approach)."""
+    3, 1.1 % (1.8 %, 2.6 %). Pass values at the same contact radius (or the same approach)."""
     w_1 = lam_1**2 / (lam_2**2 - lam_1**2)
     return (1 + w_1) * np.asarray(value_2, dtype=float) - w_1 * np.asarray(value_1, dtype=float)
 
