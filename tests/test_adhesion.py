@@ -158,6 +158,11 @@ def test_jkr_sphere_cohesive_route_and_its_limit():
     limit = ref.jkr_limit(load_1, lams[0], load_2, lams[1])
     error = np.abs(limit - ref.jkr_load(radii, radius=R, E_star=1.0, work=w)) / scale
     assert error.max() < 0.03, error
+    # the extrapolation's own error: Maugis' closed forms at the two lambdas, extrapolated the same way
+    A = radii * (4 / 3 / (np.pi * w * R**2)) ** (1 / 3)
+    md_1, md_2 = (ref.maugis_load_penetration(A, lam)[0] * np.pi * w * R for lam in lams)
+    theory = ref.jkr_limit(md_1, lams[0], md_2, lams[1])
+    assert np.abs(theory - ref.jkr_load(radii, radius=R, E_star=1.0, work=w)).max() / scale < 0.015
     assert ref.jkr_limit(P1.min(), lams[0], P2.min(), lams[1]) == pytest.approx(-scale, rel=0.01)
 
 
