@@ -143,14 +143,17 @@ def label(ds: xr.Dataset, state: AdhesiveState, adhesion: Adhesion, setup, *, le
     def a(name):
         return attrs_for(name, length=length_unit, pressure=pressure_unit)
 
-    ds["adhesive_pressure"] = (tuple(ds["pressure"].dims), np.minimum(state.pressure, 0.0), a("adhesive_pressure"))
-    ds["contact_area"] = ((), float(np.count_nonzero(state.in_contact)) / state.pressure.size, a("contact_area"))
-    ds["contact_area"].attrs["long_name"] = "repulsive (closed) contact area fraction"
     if adhesion.cohesive:
         interacting = adhesion.interacting(state.gap)
     else:
         interacting = state.in_contact
-    ds["interaction_area"] = ((), float(np.count_nonzero(interacting)) / state.pressure.size, a("interaction_area"))
+    size = state.pressure.size
+    ds.update({  # one merge: each assignment of a variable aligns the whole Dataset (about 1.5 ms at 256^2)
+        "adhesive_pressure": (tuple(ds["pressure"].dims), np.minimum(state.pressure, 0.0), a("adhesive_pressure")),
+        "contact_area": ((), float(np.count_nonzero(state.in_contact)) / size,
+                         {**a("contact_area"), "long_name": "repulsive (closed) contact area fraction"}),
+        "interaction_area": ((), float(np.count_nonzero(interacting)) / size, a("interaction_area")),
+    })
     ds.attrs.update(scene_attrs(adhesion, setup.values, setup.grid.spacing, setup.attrs["E_star"]))
     ds.attrs["full_contact"] = int(bool(np.all(state.in_contact)))
     if state.notes:

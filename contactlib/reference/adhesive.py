@@ -93,6 +93,21 @@ def maugis_pull_off(lam: float) -> float:
     return float(res.fun)
 
 
+def jkr_limit(value_1, lam_1: float, value_2, lam_2: float):
+    """The ``lambda -> infinity`` (JKR) limit of a Maugis-Dugdale quantity known at two transition parameters,
+    by Richardson extrapolation in ``1 / lambda^2``: ``(lam_2^2 v_2 - lam_1^2 v_1) / (lam_2^2 - lam_1^2)``.
+
+    Why ``1 / lambda^2``: for large ``lambda`` the zone ratio of eq. (6.21) has ``s = sqrt(m^2 - 1) =
+    sqrt(3 / (2 A)) / lambda (1 + O(lambda^-2))``, so eqs. (6.17) and (6.19) give ``P = A^3 - sqrt(6 A^3) +
+    O(lambda^-2)`` and ``D = A^2 - sqrt(8 A / 3) + O(lambda^-2)`` at a fixed contact radius ``A``: JKR's
+    curves plus a correction in ``1 / lambda^2`` (the next one is ``O(lambda^-4)``, with coefficients that
+    grow as ``A`` falls or rises). Applied to Maugis' own loads at lambda = 2 and 2.5 the limit is within
+    1.4 % of ``|P_c|`` of JKR's over 0.88-1.3 a_c (2.4 % at 1.4 a_c, 3.6 % at 1.5 a_c); at lambda = 2 and
+    3, 1.1 % (1.8 %, 2.6 %). Pass values at the same contact radius (or the same approach)."""
+    w_1 = lam_1**2 / (lam_2**2 - lam_1**2)
+    return (1 + w_1) * np.asarray(value_2, dtype=float) - w_1 * np.asarray(value_1, dtype=float)
+
+
 def johnson_wavy_alpha(*, amplitude: float, wavelength: float, E_star: float, work: float) -> float:
     """Johnson's (1995) adhesion parameter ``alpha = sqrt(2 wavelength w / (pi^2 E* amplitude^2))``."""
     return float(np.sqrt(2 * wavelength * work / (np.pi**2 * E_star * amplitude**2)))

@@ -65,14 +65,14 @@ def anderson_record(x, image, last_x, last_f, dx, df, row, m, gram, rhs):
 
 
 @_jit
-def anderson_mix(x, image, dx, df, gamma, m, lower, upper, out):
-    """``out = image - sum_k gamma_k (dx[k] + df[k])`` (that is ``x + f - ...``), clipped to
-    ``[lower, upper]``: one contiguous pass per stored row."""
+def anderson_mix(x, image, dx, df, gamma, m, beta, lower, upper, out):
+    """``out = x + beta f - sum_k gamma_k (dx[k] + beta df[k])``, ``f = image - x`` (``beta = 1``: ``image -
+    sum_k gamma_k (dx[k] + df[k])``), clipped to ``[lower, upper]``: one contiguous pass per stored row."""
     for i in range(x.size):
-        out[i] = image[i]
+        out[i] = x[i] + beta * (image[i] - x[i])
     for k in range(m):
         gk = gamma[k]
         for i in range(x.size):
-            out[i] -= gk * (dx[k, i] + df[k, i])
+            out[i] -= gk * (dx[k, i] + beta * df[k, i])
     for i in range(x.size):
         out[i] = min(max(out[i], lower), upper)
