@@ -4,9 +4,9 @@ The pressure of a steady viscoelastic (or coupled) contact varies smoothly with 
 contact set's changes; the prediction is the secant through the last two answers in the log of the speed,
 clipped at zero (which also predicts the contact set). Measured on a 512^2 rough surface, 30 speeds over
 zeta = V tau q0 1e-3..1e3 (E_inf/E0 = 10, 10 % contact): 5 % fewer GMRES iterations than starting from the
-last answer (1214 against 1281), and 2-4 contact-set updates instead of 3-7 once the pressure settles at high
-speed; in the transition the pressure moves 40 % between neighbouring speeds (the patches shift), and the
-prediction is no closer than the last answer there. Every solve reaches the tolerance asked (a warm start
+last answer (1231 against 1298; the time of one noisy run was not lower), fewer contact-set updates once the
+pressure settles at high speed; in the transition the pressure moves 40 % between neighbouring speeds (the
+patches shift), and the prediction is no closer than the last answer there. Every solve reaches the tolerance asked (a warm start
 changes the iterations, not the answer).
 """
 
