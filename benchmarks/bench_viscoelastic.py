@@ -8,8 +8,9 @@ number to ``--json``:
    middle of the band by default), over the elastic solve of the same surface at the relaxed modulus E0,
    each at the mean pressure that gives ``--contact`` (10 % and 50 %) elastically. Interleaved repeats,
    medians; iterations and outer iterations reported.
-2. **sweep**: ``--sweep-speeds`` speeds log-spaced over ``zeta`` 1e-3..1e3, walked upwards twice: each solve
-   warm-started from the last, and each cold (as the ``friction_speed`` study does), over one elastic solve.
+2. **sweep**: ``--sweep-speeds`` speeds log-spaced over ``zeta`` 1e-3..1e3, walked upwards (``--walks``): each
+   solve warm-started from the last, from :func:`contactlib.solve_speeds`' prediction (the secant through the
+   last two answers in log speed), and each cold (as the ``friction_speed`` study does), over one elastic solve.
 
 Run ``python benchmarks/bench_viscoelastic.py --help``.
 """
@@ -70,6 +71,9 @@ def main(argv=None) -> int:
     ap.add_argument("--sweep-speeds", type=int, default=30)
     ap.add_argument("--sweep-size", type=int, default=512)
     ap.add_argument("--tol", type=float, default=1e-8)
+    ap.add_argument("--walks", nargs="+", default=["warm", "path", "cold"], choices=["warm", "path", "cold"],
+                    help="sweep walks: from the last speed's pressure, from contactlib.solve_speeds' prediction "
+                         "(the secant in log speed), from scratch")
     ap.add_argument("--json", type=Path)
     args = ap.parse_args(argv)
     material = contactlib.Viscoelastic.standard_linear_solid(E0=1.0, E_inf=args.ratio, tau=1.0, nu=0.5)
@@ -114,10 +118,14 @@ def main(argv=None) -> int:
     zetas = np.logspace(-3, 3, args.sweep_speeds)
     t_el, _ = timed(lambda: contactlib.solve(h, E=1.0, nu=0.5, mean_pressure=p, tol=args.tol), args.repeats)
     walks = {}
-    for walk in ("warm", "cold"):  # warm: each speed from the last one's pressure; cold: each from scratch
+    velocities = [(zeta / (2 * np.pi), 0.0) for zeta in zetas]
+    for walk in args.walks:  # warm: from the last speed's pressure; path: predicted; cold: each from scratch
         t0, warm, iterations = time.perf_counter(), None, 0
-        for zeta in zetas:
-            out = contactlib.solve(h, material=material, mean_pressure=p, sliding_velocity=(zeta / (2 * np.pi), 0.0),
+        if walk == "path":
+            iterations = sum(int(out.iterations) for out in contactlib.solve_speeds(
+                h, velocities, material=material, mean_pressure=p, tol=args.tol))
+        for velocity in velocities if walk != "path" else ():
+            out = contactlib.solve(h, material=material, mean_pressure=p, sliding_velocity=velocity,
                                    tol=args.tol, initial_pressure=warm)
             warm = out.pressure.values if walk == "warm" else None
             iterations += int(out.iterations)

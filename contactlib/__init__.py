@@ -19,8 +19,10 @@ from .contact import ConvergenceError, solve, solve_tolerances
 from .grid import Grid
 from .materials import Elastic, Viscoelastic
 from .reciprocating import solve_reciprocating
+from .speed_path import predict_pressure, solve_speeds
 from .transient import TransientInterrupted, solve_transient
 
 __all__ = ["solve", "Adhesion", "adhesion_curve", "solve_transient", "solve_reciprocating", "TransientInterrupted",
+           "solve_speeds", "predict_pressure",
            "Layer", "Elastic", "Viscoelastic", "solve_tolerances", "ConvergenceError", "Grid", "surfaces", "analysis",
            "reference", "accuracy", "two_scale", "__version__"]

@@ -307,7 +307,9 @@ class _Setup:
                 if not state.converged and self.operator.periodic:  # a stalled outer loop: the method that needs no split
                     fallback = self._splitting()
                     state = fallback if fallback.residual < state.residual else state
-            return state if first is None or state.residual <= first.residual else first
+            if first is None or (state.converged and not first.converged):
+                return state
+            return state if not first.converged and state.residual <= first.residual else first
         if self.method == "cg":
             return self._symmetric(self.values, monitor=monitor, verify_below=verify_below, **self.solver_args)
         args = {k: v for k, v in self.solver_args.items() if k != "initial_pressure"}

@@ -46,6 +46,14 @@ MAX_SETS = 200
 START_FRACTION = 0.05
 """A cold start's contact set: the highest points, this fraction of the grid."""
 
+INNER_FORCING = 0.1
+"""With a ``set_solver`` (:mod:`.krylov`), each set is solved to this fraction of the last set's outer residual
+(Eisenstat-Walker), not to a tolerance fixed by the number of points that moved: near the answer a few points
+still move and the fixed rule asked exact solves of sets about to change (20 of 85 GMRES iterations on one
+512^2 viscoelastic speed). With :data:`.krylov.SETTLED` and a held set solved to ``tol / 16`` at once: 7 % fewer
+GMRES iterations over a 30-speed sweep (1298 against 1401), 5 % on cold friction and viscoelastic solves, with
+fewer set updates (5-10 against 9-14)."""
+
 
 def solve_semismooth(
     operator,
@@ -127,8 +135,8 @@ def solve_semismooth(
         stop = monitor is not None and monitor(k, residual, lambda s=state: s)
         if state.converged or iterations >= max_iter or stop:
             return state
-        if changed == 0:  # the set holds: solve it tighter
-            inner_tol = max(tol / 16, inner_tol / 100)
+        if changed == 0:  # the set holds: solve it tighter (a set solver: to the end at once)
+            inner_tol = tol / 16 if set_solver is not None else max(tol / 16, inner_tol / 100)
             continue
         key = following.tobytes()
         if key in seen:  # a cycle of sets: tighter solves break ties made by round-off
@@ -140,7 +148,10 @@ def solve_semismooth(
         if not load_control and active.all():
             raise ValueError(f"penetration {penetration!r} reaches full contact on this body: the load is then "
                              "undetermined; give mean_pressure instead")
-        inner_tol = min(inner_tol, max(tol / 16, 1e-3 * changed / n))
+        if set_solver is not None:  # inexact Newton: the set solves follow the outer residual
+            inner_tol = max(tol / 16, min(inner_tol, INNER_FORCING * residual))
+        else:
+            inner_tol = min(inner_tol, max(tol / 16, 1e-3 * changed / n))
     return state
 
 

@@ -1,0 +1,44 @@
+"""A path of speeds solved from predicted starts gives the cold solves' answers (contactlib.solve_speeds)."""
+
+import numpy as np
+import pytest
+
+import contactlib
+
+SLS = contactlib.Viscoelastic.standard_linear_solid(E0=1.0, E_inf=10.0, tau=1.0, nu=0.5)
+
+
+def test_prediction_is_the_secant_in_log_speed_clipped_at_zero():
+    a, b = np.array([1.0, 2.0, 0.5]), np.array([2.0, 1.0, 0.0])
+    # pressure linear in log(speed): 1 -> a, 10 -> b, so 100 -> 2b - a (clipped), 10**1.5 -> (a + b) / 2 + (b - a)
+    assert np.allclose(contactlib.predict_pressure([1.0, 10.0], [a, b], 100.0), [3.0, 0.0, 0.0])
+    assert np.allclose(contactlib.predict_pressure([1.0, 10.0], [a, b], 10**1.5), [2.5, 0.5, 0.0])
+    assert np.array_equal(contactlib.predict_pressure([3.0], [a], 5.0), a)
+    assert contactlib.predict_pressure([], [], 1.0) is None
+    with pytest.raises(ValueError, match="speed"):
+        contactlib.predict_pressure([1.0, 10.0], [a, b], 0.0)
+
+
+def test_path_answers_equal_cold_solves():
+    h = contactlib.surfaces.self_affine(64, hurst=0.8, q_roll=2, q_cutoff=8, rms_slope=0.1, seed=3)
+    velocities = [(zeta / (2 * np.pi), 0.0) for zeta in np.logspace(-2, 1, 5)]
+    path = contactlib.solve_speeds(h, velocities, material=SLS, mean_pressure=0.02, tol=1e-8)
+    areas = []
+    for velocity, warm in zip(velocities, path):
+        cold = contactlib.solve(h, material=SLS, mean_pressure=0.02, sliding_velocity=velocity, tol=1e-8)
+        assert warm.residual <= 1e-8
+        dp = np.linalg.norm(warm.pressure.values - cold.pressure.values) / np.linalg.norm(cold.pressure.values)
+        assert dp < 1e-6
+        assert float(warm.contact_area) == pytest.approx(float(cold.contact_area), abs=2 / h.size)
+        assert float(warm.friction_coefficient_interlocking) == pytest.approx(
+            float(cold.friction_coefficient_interlocking), rel=1e-6)
+        areas.append(float(cold.contact_area))
+    assert areas[0] > 1.3 * areas[-1]  # the path crosses the band: the glassy body touches less
+
+
+def test_bad_path_arguments():
+    h = np.zeros(32)
+    with pytest.raises(ValueError, match="sliding_velocities"):
+        contactlib.solve_speeds(h, [0.0], material=SLS, mean_pressure=0.1)
+    with pytest.raises(ValueError, match="initial_pressure"):
+        contactlib.solve_speeds(h, [1.0], material=SLS, mean_pressure=0.1, initial_pressure=np.ones(32))
