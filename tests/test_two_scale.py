@@ -129,6 +129,10 @@ def test_few_asperities_match_the_full_solver(few):
     assert float(two.penetration) == pytest.approx(float(full.penetration), rel=1e-4)
     assert np.max(np.abs(two.pressure.values - full.pressure.values)) < 1e-3 * float(full.pressure.max())
     assert float(two.contact_area) == pytest.approx(float(full.contact_area), rel=0.02)
+    # the residual, summed over the footprints only, is the full solver's measure of the assembled fields
+    from contactlib.solvers.state import contact_residual, height_scale
+    assert float(two.residual) == pytest.approx(
+        contact_residual(two.pressure.values, two.gap.values, height_scale(h.values)), rel=1e-10)
     # macro: Hertz + point loads, a few percent off where contacts are close (reported, not the 1 % goal)
     np.testing.assert_allclose(macro.force, reference, rtol=0, atol=0.03 * scale)
 

@@ -258,10 +258,23 @@ def _solve_in_windows(table: AsperityTable, macro: MacroState, law: HertzLaw, E_
             "mean_pressure/penetration: the body reaches the surface between the asperities' footprints (the gap "
             f"there falls to {float(gap[outside].min()):.3g}): the load is beyond what separate spherical contacts "
             "carry, so the two-scale method does not apply")
-    residual = contact_residual(pressure, gap, height_scale(heights))
+    residual = _footprint_residual(pressure, gap, nodes_of[masks], height_scale(heights))
     converged = change <= tol if force_tol is None else force_change <= force_tol
     return MicroState(pressure, displacement, gap, force, nodes, float(delta), it, local_iterations, change, residual,
                       converged, window, force_change)
+
+
+def _footprint_residual(pressure: np.ndarray, gap: np.ndarray, on: np.ndarray, scale: float) -> float:
+    """:func:`contactlib.solvers.contact_residual` of the grid fields from the footprints' nodes ``on``
+    alone (flat indices): off them the pressure is zero and the gap (checked) positive, so they add
+    nothing but their count to its means; a third of the work on 10^4 asperities at coverage 0.2."""
+    p, g = pressure.ravel()[on], gap.ravel()[on]
+    total = float(p.sum())
+    if total <= 0:
+        return contact_residual(pressure, gap, scale)
+    comp = float(np.einsum("i,i->", p, np.abs(g)))
+    pen = float(np.maximum(-g, 0.0).sum()) / pressure.size
+    return (comp + total * pen) / (total * scale)
 
 
 def _window_stack(table: AsperityTable, grid: Grid, window: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
