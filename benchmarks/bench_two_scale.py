@@ -48,7 +48,7 @@ def run_case(count: int, coverage: float, args) -> dict:
     """One field: :func:`contactlib.studies.two_scale.compare_methods` (the study's own point), or the reason
     it was skipped."""
     n = int(round(nodes_per_spacing(coverage, args.nodes_per_radius) * math.sqrt(count)))
-    case = {"count": count, "coverage": coverage, "n": n}
+    case = {"count": count, "coverage": coverage, "n": n, "load_average": os.getloadavg()[0]}
     if n > args.max_nodes:
         case["skipped"] = f"grid {n}^2 above --max-nodes {args.max_nodes}"
         return case
