@@ -83,14 +83,14 @@ def main(argv=None) -> None:
     print(f"# bench_two_scale ({host_info()})\n")
     print("| N | coverage | n | in contact | full s | two-scale s | macro s | full/two-scale | full/macro | "
           "two-scale force err | two-scale max asperity err | macro force err | macro max asperity err | "
-          "full force err | outer its | load |")
-    print("|" + "---|" * 16)
+          "full force err | outer its | CPU full/two-scale | CPU full/macro | load |")
+    print("|" + "---|" * 18)
     for count in args.counts:
         for coverage in args.coverages:
             case = run_case(count, coverage, args)
             rows.append(case)
             if "skipped" in case:
-                print(f"| {count} | {coverage} | {case['n']} | {case['skipped']} |" + " |" * 11
+                print(f"| {count} | {coverage} | {case['n']} | {case['skipped']} |" + " |" * 13
                       + f" {case['load_average']:.1f} |", flush=True)
             else:
                 print(f"| {count} | {coverage} | {case['n']} | {case['in_contact']} | {case['full_time']:.3g} | "
@@ -98,7 +98,8 @@ def main(argv=None) -> None:
                       f"{case['macro_speedup']:.1f} | {case['two_scale_force_error']:.1e} | "
                       f"{case['two_scale_asperity_force_error']:.1e} | {case['macro_force_error']:.1e} | "
                       f"{case['macro_asperity_force_error']:.1e} | {case['full_force_error']:.1e} | "
-                      f"{case['two_scale_iterations']} | {case['load_average']:.1f} |", flush=True)
+                      f"{case['two_scale_iterations']} | {case['two_scale_cpu_speedup']:.2f} | "
+                      f"{case['macro_cpu_speedup']:.1f} | {case['load_average']:.1f} |", flush=True)
     if args.json:
         args.json.write_text(json.dumps({"host": host_info(), "args": {k: str(v) for k, v in vars(args).items()},
                                          "rows": rows}, indent=1))
