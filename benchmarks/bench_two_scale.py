@@ -48,7 +48,7 @@ def run_case(count: int, coverage: float, args) -> dict:
     """One field: :func:`contactlib.studies.two_scale.compare_methods` (the study's own point), or the reason
     it was skipped."""
     n = int(round(nodes_per_spacing(coverage, args.nodes_per_radius) * math.sqrt(count)))
-    case = {"count": count, "coverage": coverage, "n": n}
+    case = {"count": count, "coverage": coverage, "n": n, "load_average": os.getloadavg()[0]}
     if n > args.max_nodes:
         case["skipped"] = f"grid {n}^2 above --max-nodes {args.max_nodes}"
         return case
@@ -59,6 +59,7 @@ def run_case(count: int, coverage: float, args) -> dict:
                                     tol=args.ref_tol, two_scale_force_tol=args.two_scale_force_tol))
     except (ValueError, RuntimeError) as err:  # a refused scene or a non-convergence is a result too
         case["skipped"] = f"{type(err).__name__}: {err}"
+    case["load_average"] = os.getloadavg()[0]  # the 1-minute load when the field's runs ended
     return case
 
 
@@ -82,21 +83,23 @@ def main(argv=None) -> None:
     print(f"# bench_two_scale ({host_info()})\n")
     print("| N | coverage | n | in contact | full s | two-scale s | macro s | full/two-scale | full/macro | "
           "two-scale force err | two-scale max asperity err | macro force err | macro max asperity err | "
-          "full force err | outer its |")
-    print("|" + "---|" * 15)
+          "full force err | outer its | CPU full/two-scale | CPU full/macro | load |")
+    print("|" + "---|" * 18)
     for count in args.counts:
         for coverage in args.coverages:
             case = run_case(count, coverage, args)
             rows.append(case)
             if "skipped" in case:
-                print(f"| {count} | {coverage} | {case['n']} | {case['skipped']} |" + " |" * 11, flush=True)
+                print(f"| {count} | {coverage} | {case['n']} | {case['skipped']} |" + " |" * 13
+                      + f" {case['load_average']:.1f} |", flush=True)
             else:
                 print(f"| {count} | {coverage} | {case['n']} | {case['in_contact']} | {case['full_time']:.3g} | "
                       f"{case['two_scale_time']:.3g} | {case['macro_time']:.3g} | {case['two_scale_speedup']:.2f} | "
                       f"{case['macro_speedup']:.1f} | {case['two_scale_force_error']:.1e} | "
                       f"{case['two_scale_asperity_force_error']:.1e} | {case['macro_force_error']:.1e} | "
                       f"{case['macro_asperity_force_error']:.1e} | {case['full_force_error']:.1e} | "
-                      f"{case['two_scale_iterations']} |", flush=True)
+                      f"{case['two_scale_iterations']} | {case['two_scale_cpu_speedup']:.2f} | "
+                      f"{case['macro_cpu_speedup']:.1f} | {case['load_average']:.1f} |", flush=True)
     if args.json:
         args.json.write_text(json.dumps({"host": host_info(), "args": {k: str(v) for k, v in vars(args).items()},
                                          "rows": rows}, indent=1))

@@ -132,6 +132,15 @@ def test_tiny_end_to_end_run_and_report(workdir):
         for name in list(ds.data_vars) + list(ds.coords):
             assert ds[name].attrs.get("units") and ds[name].attrs.get("long_name"), name
         assert float(ds.two_scale_asperity_force_error.max()) < 1e-2 and (ds.macro_time > 0).all()
+    with xr.open_dataset(results / "two_scale_transient.nc") as ds:
+        assert (ds.status == 0).all() and ds.two_scale_creep_force_error.dims == (
+            "count", "coverage", "glassy_ratio", "seed", "time")
+        for name in list(ds.data_vars) + list(ds.coords):
+            assert ds[name].attrs.get("units") and ds[name].attrs.get("long_name"), name
+        # the body creeps (the approach grows) and the two-scale steps follow the full solver's within 1 %
+        growth = ds.reference_creep_penetration.isel(time=-1) / ds.reference_creep_penetration.isel(time=0)
+        assert float(growth.min()) > 1.1 and float(ds.two_scale_creep_force_error.max()) < 1e-2
+        assert float(ds.macro_creep_force_error.max()) < 5e-2 and (ds.macro_creep_time > 0).all()
     with xr.open_dataset(results / "fig4_adhesive_layers.nc") as ds:
         assert (ds.status == 0).all() and ds.scaled_penetration.attrs["long_name"] == "penetration Delta / Lambda"
         one = ds.isel(scaled_penetration=0, branch=0)
@@ -173,7 +182,7 @@ def test_tiny_end_to_end_run_and_report(workdir):
     for study in ("validation", "area_load", "anisotropy", "speed_vs_error", "fig5_friction_area",
                   "fig6a_interlocking", "fig2_viscoelastic_map", "fig3_anisotropy_polar", "fig6b_viscoelastic_layer",
                   "friction_speed", "two_scale", "fig4_adhesive_layers", "adhesive_rough", "viscoelastic_transient",
-                  "reciprocating"):
+                  "reciprocating", "two_scale_transient"):
         assert (results / "figures" / f"{study}.png").stat().st_size > 10_000
     assert not list(results.glob(".*.tmp"))
     report = snakemake(workdir, "--configfile", "tiny.yaml", "--report", "results/report.html", timeout=300)

@@ -46,7 +46,7 @@ from .validation import validation_point
 STUDY_MODULES = ("validation", "area_load", "anisotropy", "speed_vs_error", "fig5_friction_area",
                  "fig6a_interlocking", "measured_area_load", "fig2_viscoelastic_map", "fig3_anisotropy_polar",
                  "fig6b_viscoelastic_layer", "friction_speed", "two_scale", "fig4_adhesive_layers", "adhesive_rough",
-                 "viscoelastic_transient", "reciprocating")
+                 "viscoelastic_transient", "reciprocating", "two_scale_transient")
 """The study modules of this package, in registry order; each module's name is its study's name."""
 
 

@@ -36,12 +36,16 @@ VARIABLES: dict[str, dict[str, str]] = {
     "in_contact": {"units": "1", "long_name": "asperities in contact (reference)"},
     **{f"{m}_time": {"units": "s", "long_name": f"wall time, {label} (median)"}
        for m, label in zip(METHODS, ("macro step", "two-scale method", "full FFT solver"))},
+    **{f"{m}_cpu_time": {"units": "s", "long_name": f"CPU time of the process, {label} (median)"}
+       for m, label in zip(METHODS, ("macro step", "two-scale method", "full FFT solver"))},
     **{f"{m}_{q}_error": {"units": "1", "long_name": f"{label}: relative error of the {what}"}
        for m, label in zip(METHODS, ("macro step", "two-scale method", "full FFT solver"))
        for q, what in (("force", "total force"), ("asperity_force", "asperity forces (max over the largest)"),
                        ("contact_area", "contact area"), ("pressure", "pressure field (L2)"))},
     "two_scale_speedup": {"units": "1", "long_name": "full solver time / two-scale time"},
     "macro_speedup": {"units": "1", "long_name": "full solver time / macro step time"},
+    "two_scale_cpu_speedup": {"units": "1", "long_name": "full solver CPU time / two-scale CPU time"},
+    "macro_cpu_speedup": {"units": "1", "long_name": "full solver CPU time / macro step CPU time"},
     "two_scale_iterations": {"units": "1", "long_name": "outer iterations of the two-scale micro step"},
 }
 """Labels of the study's own names (the shared ones are in :data:`contactlib.studies._common.COMMON_VARIABLES`)."""
@@ -86,11 +90,13 @@ def compare_methods(*, count: int, coverage: float, seed: int, nodes_per_radius:
     }
     outputs = {name: run() for name, run in solvers.items()}  # warm-up: FFT plans, JIT
     times = {name: [] for name in solvers}
+    cpu = {name: [] for name in solvers}  # CPU time beside wall time: less sensitive to other jobs' load
     for _ in range(int(repeats)):
         for name, run in solvers.items():  # interleaved: a change of the machine's load hits all alike
-            start = time.perf_counter()
+            start, start_cpu = time.perf_counter(), time.process_time()
             run()
             times[name].append(time.perf_counter() - start)
+            cpu[name].append(time.process_time() - start_cpu)
     macro_fields = two_scale.solve(field, E=E, nu=nu, penetration=approach, scale="macro")  # untimed
     row = {"n": field.shape[0], "in_contact": int(np.count_nonzero(reference_forces)),
            "contact_area": float(reference.contact_area),
@@ -104,9 +110,12 @@ def compare_methods(*, count: int, coverage: float, seed: int, nodes_per_radius:
     }
     for name in METHODS:
         row[f"{name}_time"] = statistics.median(times[name])
+        row[f"{name}_cpu_time"] = statistics.median(cpu[name])
         row.update({f"{name}_{k}": v for k, v in _errors(*answers[name], reference, reference_forces).items()})
     row["two_scale_speedup"] = row["full_time"] / row["two_scale_time"]
     row["macro_speedup"] = row["full_time"] / row["macro_time"]
+    row["two_scale_cpu_speedup"] = row["full_cpu_time"] / row["two_scale_cpu_time"]
+    row["macro_cpu_speedup"] = row["full_cpu_time"] / row["macro_cpu_time"]
     return row
 
 

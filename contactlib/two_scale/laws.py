@@ -73,6 +73,17 @@ class TabulatedLaw:
         """A length of the law [length]: the largest tabulated penetration."""
         return self.max_penetration
 
+    def at_modulus(self, E_star: float) -> "TabulatedLaw":
+        """The same asperity on a body of contact modulus ``E_star`` [pressure]: a rigid shape pressed to a
+        given penetration into an elastic half-space has a contact independent of the modulus and a
+        pressure proportional to it, so the forces scale by ``E_star / law_E_star`` and the radii stay."""
+        if "law_E_star" not in self.attrs:
+            raise ValueError("law: attrs['law_E_star'] (the contact modulus the table was made with) is needed to "
+                             "use it at another modulus")
+        factor = float(E_star) / float(self.attrs["law_E_star"])
+        return TabulatedLaw(self.penetration, self.force_table * factor, self.radius_table,
+                            footprint_radius=self.footprint_radius, attrs={**self.attrs, "law_E_star": float(E_star)})
+
     def _log_values(self, d: np.ndarray, which: int) -> tuple[np.ndarray, np.ndarray]:
         """``log f`` and ``d log f / d log d`` at ``d > 0`` (force: ``which=1``, radius: 2)."""
         x = np.log(d)

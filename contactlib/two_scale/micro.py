@@ -50,6 +50,9 @@ from .macro import HertzLaw, MacroState, solve_contact_compliance
 WINDOW_MARGIN = 1.15
 """Window half-width in macro contact radii (the largest), plus :data:`WINDOW_PAD` nodes."""
 WINDOW_PAD = 2
+COARSE_RTOL = 1e-4
+"""Relative residual of the coarse correction's linear solve: a correction off by 1e-4 of itself changes
+a sweep's contraction (10-20x) by nothing measurable, and a fixed point's corrections are zero."""
 LOCAL_TOL_FACTOR = 0.1
 """Local solves run at this fraction of the outer tolerance, so the outer change measures the coupling."""
 
@@ -112,23 +115,6 @@ def hertz_pressure_field(table: AsperityTable, grid: Grid, force: np.ndarray, co
     local *= np.divide(force, total, out=np.zeros_like(total), where=total > 0)[:, None, None]
     on = local > 0  # inside each contact disc: the discs lie in disjoint footprints
     return np.bincount(nodes_of[on], weights=local[on], minlength=grid.shape[0] * grid.shape[1]).reshape(grid.shape)
-
-
-def _window(table: AsperityTable, grid: Grid, k: int, window: int):
-    """Grid rows and columns of asperity ``k``'s window (wrapped if periodic) and the node offsets from
-    its summit [length]."""
-    n, h = grid.shape[0], grid.spacing[0]
-    centre = np.rint(table.centers[k] / h).astype(int)
-    start = centre - window // 2
-    if not table.periodic:
-        start = np.clip(start, 0, n - window)
-    idx = [start[a] + np.arange(window) for a in range(2)]
-    offsets = [i * h - table.centers[k, a] for a, i in enumerate(idx)]
-    if table.periodic:
-        L = table.length
-        offsets = [(o + L / 2) % L - L / 2 for o in offsets]
-        idx = [i % n for i in idx]
-    return idx[0], idx[1], offsets[0], offsets[1]
 
 
 def window_size(table: AsperityTable, *, grid: Grid, contact_radius: np.ndarray) -> int:
@@ -272,23 +258,44 @@ def _solve_in_windows(table: AsperityTable, macro: MacroState, law: HertzLaw, E_
             "mean_pressure/penetration: the body reaches the surface between the asperities' footprints (the gap "
             f"there falls to {float(gap[outside].min()):.3g}): the load is beyond what separate spherical contacts "
             "carry, so the two-scale method does not apply")
-    residual = contact_residual(pressure, gap, height_scale(heights))
+    residual = _footprint_residual(pressure, gap, nodes_of[masks], height_scale(heights))
     converged = change <= tol if force_tol is None else force_change <= force_tol
     return MicroState(pressure, displacement, gap, force, nodes, float(delta), it, local_iterations, change, residual,
                       converged, window, force_change)
 
 
+def _footprint_residual(pressure: np.ndarray, gap: np.ndarray, on: np.ndarray, scale: float) -> float:
+    """:func:`contactlib.solvers.contact_residual` of the grid fields from the footprints' nodes ``on``
+    alone (flat indices): off them the pressure is zero and the gap (checked) positive, so they add
+    nothing but their count to its means; a third of the work on 10^4 asperities at coverage 0.2."""
+    p, g = pressure.ravel()[on], gap.ravel()[on]
+    total = float(p.sum())
+    if total <= 0:
+        return contact_residual(pressure, gap, scale)
+    comp = float(np.einsum("i,i->", p, np.abs(g)))
+    pen = float(np.maximum(-g, 0.0).sum()) / pressure.size
+    return (comp + total * pen) / (total * scale)
+
+
 def _window_stack(table: AsperityTable, grid: Grid, window: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Flat grid index of every node of every asperity's window, ``(N, w, w)``, the mask of the nodes
-    inside its footprint, and their squared distances from its summit [length^2]."""
-    n = grid.shape[1]
+    inside its footprint, and their squared distances from its summit [length^2]. Each window is
+    centred on the grid node nearest its summit and aligned with the grid, wrapped if periodic (else
+    shifted inside the grid)."""
+    n, h = grid.shape[1], grid.spacing[0]
     footprint = table.footprint_radius
-    nodes_of = np.empty((table.count, window, window), dtype=np.intp)
-    r2 = np.empty((table.count, window, window))
-    for k in range(table.count):
-        rows, cols, dx, dy = _window(table, grid, k, window)
-        nodes_of[k] = rows[:, None] * n + cols[None, :]
-        r2[k] = dx[:, None] ** 2 + dy[None, :] ** 2
+    centre = np.rint(table.centers / h).astype(int)  # (N, 2): each window centred on the node nearest its summit
+    start = centre - window // 2
+    if not table.periodic:
+        start = np.clip(start, 0, n - window)
+    idx = start[:, :, None] + np.arange(window)[None, None, :]  # (N, 2, w)
+    offsets = idx * h - table.centers[:, :, None]
+    if table.periodic:
+        L = table.length
+        offsets = (offsets + L / 2) % L - L / 2
+        idx = idx % n
+    nodes_of = idx[:, 0, :, None] * n + idx[:, 1, None, :]
+    r2 = offsets[:, 0, :, None] ** 2 + offsets[:, 1, None, :] ** 2
     return nodes_of, r2 < footprint[:, None, None] ** 2, r2
 
 
@@ -300,10 +307,11 @@ def _coarse_correction(interaction: PointInteraction, law: HertzLaw, E_star: flo
     hertz_force = new_force if known_force is None else np.where(new_force > 0, new_force + known_force, 0.0)
     slope = law.stiffness(hertz_force)
     rhs = -interaction(new_force - old_force)
-    correction = solve_contact_compliance(interaction, slope, rhs)
+    # loosely: the fixed point does not depend on the correction, only the sweep's contraction does
+    correction = solve_contact_compliance(interaction, slope, rhs, rtol=COARSE_RTOL)
     step = 0.0
     if total_force is not None and np.any(slope > 0):
-        per_approach = solve_contact_compliance(interaction, slope, np.ones_like(slope))
+        per_approach = solve_contact_compliance(interaction, slope, np.ones_like(slope), rtol=COARSE_RTOL)
         step = (total_force - float(new_force.sum()) - float(correction.sum())) / float(per_approach.sum())
         correction = correction + per_approach * step
     scale = np.ones_like(new_force)

@@ -46,6 +46,7 @@ from ..operators import Compliance
 from ..transient import INITIAL_STATES, MODELS_KEPT, _history, _times
 from .asperities import AsperityTable, asperity_forces
 from .interaction import PointInteraction
+from .laws import TabulatedLaw
 from .macro import HertzLaw, MacroState, solve_macro
 from .micro import solve_micro
 
@@ -64,6 +65,7 @@ def solve_transient(
     mean_pressure=None,
     penetration=None,
     scale: str = "two-scale",
+    law=None,
     initial: str = "unloaded",
     periodic: bool | None = None,
     length: float | None = None,
@@ -95,6 +97,12 @@ def solve_transient(
     scale : {"two-scale", "macro"}
         ``"macro"``: Hertz's law and the point-load interaction only, the memory kept per asperity;
         ``"two-scale"``: each step refined by the local FFT solves, the memory kept on the grid.
+    law : TabulatedLaw, optional
+        The single-asperity law of every asperity, as :func:`contactlib.two_scale.solve`: default Hertz's,
+        or a :func:`contactlib.two_scale.tabulated_law` for another shape. It may be tabulated at any
+        modulus (its ``attrs['law_E_star']``): each step uses it at the step's effective modulus
+        (:meth:`~contactlib.two_scale.TabulatedLaw.at_modulus`). Lee and Radok's argument behind the
+        per-asperity memory holds for any axisymmetric shape whose contact does not recede.
     initial : {"unloaded", "relaxed"}
     periodic, length, n, tol, macro_tol, max_iter
         As :func:`contactlib.two_scale.solve`, for every step.
@@ -131,8 +139,14 @@ def solve_transient(
     if isinstance(max_iter, bool) or not isinstance(max_iter, (int, np.integer)) or max_iter < 1:
         raise ValueError(f"max_iter must be an integer >= 1, got {max_iter!r}")
     from . import _table_with_grid  # the package imports this module
-    table = _table_with_grid(asperities, length=length, periodic=periodic, n=n, scale=scale)
-    stepper = _Stepper(table, material, scale, control, float(tol), float(macro_tol), int(max_iter))
+    if law is not None:
+        if not isinstance(law, TabulatedLaw):
+            raise ValueError(f"law must be None (Hertz) or a contactlib.two_scale.tabulated_law(...), got {law!r}")
+        law.at_modulus(contact_modulus(material.E0, material.nu))  # refuses a table without its modulus
+    table = _table_with_grid(asperities, length=length, periodic=periodic, n=n, scale=scale, law=law)
+    if law is not None and scale == "two-scale" and table.grid is None:
+        raise ValueError("law: the two-scale method with a tabulated law needs the heights on a grid (a DataArray)")
+    stepper = _Stepper(table, material, scale, control, float(tol), float(macro_tol), int(max_iter), law)
     record = _Record(table, times)
     start = _time.perf_counter()
     try:
@@ -158,8 +172,8 @@ class _Stepper:
     the grid (two-scale)."""
 
     def __init__(self, table: AsperityTable, material, scale: str, control: str, tol: float, macro_tol: float,
-                 max_iter: int):
-        self.table, self.material, self.scale, self.control = table, material, scale, control
+                 max_iter: int, law: TabulatedLaw | None = None):
+        self.table, self.material, self.scale, self.control, self.law = table, material, scale, control, law
         self.tol, self.macro_tol, self.max_iter = tol, macro_tol, max_iter
         self.z_top = float(table.heights.max()) if table.heights is not None else float(table.summit_height.max())
         self.area = table.length**2
@@ -188,8 +202,8 @@ class _Stepper:
             E_star = contact_modulus(E_eff, self.material.nu)
             compliance = None if self.scale == "macro" else \
                 Compliance(self.table.grid, E_star=E_star, periodic=self.table.periodic)
-            self._models[E_eff] = (E_star, PointInteraction(self.table, E_star), HertzLaw(self.table.radius, E_star),
-                                   compliance)
+            law = HertzLaw(self.table.radius, E_star) if self.law is None else self.law.at_modulus(E_star)
+            self._models[E_eff] = (E_star, PointInteraction(self.table, E_star), law, compliance)
         return self._models[E_eff]
 
     def first(self, load: float, *, relaxed: bool) -> dict:
@@ -226,6 +240,9 @@ class _Stepper:
                                    f"{carried.residual:.3e} > macro_tol {self.macro_tol:.1e}",
                                    residual=carried.residual, dataset=None)
         _check_separate_contacts(table, law, carried, self.z_top)
+        if isinstance(law, TabulatedLaw) and np.any(carried.local_penetration > law.max_penetration):
+            raise ValueError(f"law: the local penetration {float(carried.local_penetration.max()):.4g} exceeds the "
+                             f"table's max_penetration {law.max_penetration:.4g}: tabulate further")
         force = carried.force - history_force
         macro = MacroState(np.maximum(force, 0.0), carried.local_penetration, carried.penetration, carried.iterations,
                            carried.residual, carried.converged)
@@ -303,6 +320,7 @@ class _Record:
             "periodic": int(table.periodic), "window_lengths": [table.length, table.length],
             "load_control": stepper.control, "tol": stepper.tol, "macro_tol": stepper.macro_tol,
             "max_iter": stepper.max_iter, "single_asperity_law": "hertz",
+            **({} if stepper.law is None else {k: v for k, v in stepper.law.attrs.items() if k != "law_E_star"}),
             "time_integration": "displacement at a constant rate over each step, Prony branches integrated exactly "
                                 "(second order; exact at fixed displacement): contactlib.hereditary; memory "
                                 + ("per asperity (Lee and Radok: contacts that do not recede)"

@@ -200,6 +200,21 @@ rule plot_two_scale:
         "../envs/contactlib.yaml"
     script:
         "../scripts/plot_two_scale.py"
+rule plot_two_scale_transient:
+    input:
+        data="results/two_scale_transient.nc",
+    output:
+        report(
+            "results/figures/two_scale_transient.png",
+            caption="../report/two_scale_transient.rst",
+            category="Two-scale method",
+        ),
+    log:
+        "logs/plot/two_scale_transient.log",
+    conda:
+        "../envs/contactlib.yaml"
+    script:
+        "../scripts/plot_two_scale_transient.py"
 rule plot_fig4_adhesive_layers:
     input:
         data="results/fig4_adhesive_layers.nc",
