@@ -57,9 +57,10 @@ grows, where Douglas-Rachford (:mod:`.splitting`) converges."""
 TRY_ITERATIONS = 400
 """A first try on a loss-dominated body (:data:`.splitting.SPLIT_ABOVE`), before Douglas-Rachford: the GMRES
 iterations it may use in all (the symmetric start included). Where the loop converges there (E_inf/E0 = 1000,
-zeta = V tau q0 = 1e-4 .. 1e-2, 128^2-512^2) it took 116-260; where it fails the sets grow and their GMRES
-stagnates (1982 and 7937 iterations on two sets of a 128^2 surface), and Douglas-Rachford takes 300-1700
-iterations of similar cost, so a failed try adds at most about a third."""
+zeta = V tau q0 = 1e-4 .. 1e-2, 64^2-512^2 at 10 % and 60 % contact) it took 60-245; where it fails the sets
+grow and, unbounded, their GMRES stagnated (1982 and 7937 iterations on two sets of a 128^2 surface). Failed
+tries stopped after 78-271 (by :data:`TRY_GROWTH`), or this budget, where Douglas-Rachford then takes 500-2800
+iterations of similar cost."""
 
 TRY_GROWTH = 10.0
 """The first try stops once its residual exceeds this factor times its first set's: there the loop diverges
