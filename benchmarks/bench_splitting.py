@@ -6,6 +6,11 @@ solvers run on them, interleaved, medians of ``--repeats`` (a solver that does n
 :func:`contactlib.solvers.splitting.solve_splitting`. Printed as a markdown table: the skew ratio
 ``max |Im M| / Re M``, iterations, residual, seconds, the time ratio and the pressures' relative difference.
 
+``--try-first``: the dispatch of a loss-dominated body (E_inf/E0 = ``--ratio``, nu = 0.5, the 2D surface of
+``bench_viscoelastic.py`` at the load of 10 % elastic contact, ``--sizes``, ``--zetas``), before (Douglas-Rachford
+alone) and after (the bounded GMRES first try, Douglas-Rachford if it fails: ``_Setup.run``), interleaved with
+an elastic solve of the same scene, the unit of cost; medians of ``--repeats``, load average before and after.
+
 Run ``python benchmarks/bench_splitting.py --help``.
 """
 
@@ -64,13 +69,68 @@ def scenes(n1, n2):
            scene(h, Elastic(1.0, 0.5), 0.05, friction=1.0, layer=Layer(0.1 / q0)))
 
 
+def try_first(sizes, zetas, ratio, repeats, tol=1e-8) -> None:
+    """Print the before/after table of the loss-dominated dispatch (see the module docstring)."""
+    from bench_viscoelastic import load_for, surface
+
+    material = Viscoelastic.standard_linear_solid(E0=1.0, E_inf=ratio, tau=1.0, nu=0.5)
+    print(f"\nload average {os.getloadavg()[0]:.2f}; E_inf/E0 = {ratio:g}, tol {tol:g}, medians of {repeats}")
+    print("\n| n | zeta | elastic s (it) | before: DR s (ratio), it | try: it (sets), residual, s (ratio) | after: solver, "
+          "s (ratio), it | after / before | \\|p_after - p_before\\| / \\|p_before\\| |")
+    print("|---|---|---|---|---|---|---|---|")
+    ratios = []
+    for n in sizes:
+        h = surface(n)
+        load = load_for(h, 0.1)
+        for zeta in zetas:
+            s = _setup(h, material=material, mean_pressure=load, penetration=None, periodic=True, tol=tol,
+                       max_iter=10_000, kernel="spectral", method="cg", length=None, initial_pressure=None,
+                       target_error=None, layer=None, friction=0.0, sliding_direction=None,
+                       sliding_velocity=(zeta / (2 * np.pi), 0.0))
+            te, tb, ta, tt = [], [], [], []
+            for _ in range(repeats):  # interleaved: the machine's load hits all alike
+                t0 = time.perf_counter()
+                e = contactlib.solve(h, E=1.0, nu=0.5, mean_pressure=load, tol=tol)
+                te.append(time.perf_counter() - t0)
+                t0 = time.perf_counter()
+                attempt = s._krylov(first_try=True)  # the try alone: what a failed one adds
+                tt.append(time.perf_counter() - t0)
+                t0 = time.perf_counter()
+                before = s._splitting()
+                tb.append(time.perf_counter() - t0)
+                t0 = time.perf_counter()
+                after = s.run()
+                ta.append(time.perf_counter() - t0)
+            e_s, b_s, a_s, t_s = (statistics.median(t) for t in (te, tb, ta, tt))
+            ratios.append(a_s / b_s)
+            diff = np.linalg.norm(after.pressure - before.pressure) / np.linalg.norm(before.pressure)
+            flag = lambda st: "" if st.converged else " **not converged**"  # noqa: E731
+            print(f"| {n} | {zeta:g} | {e_s:.3f} ({int(e.iterations)}) | {b_s:.3f} ({b_s / e_s:.0f}x), "
+                  f"{before.iterations}{flag(before)} | {attempt.iterations} ({attempt.outer_iterations}), "
+                  f"{attempt.residual:.1e}{'' if attempt.converged else ' failed'}, {t_s:.3f} ({t_s / e_s:.1f}x) "
+                  f"| {after.solver}, {a_s:.3f} "
+                  f"({a_s / e_s:.0f}x), {after.iterations}{flag(after)} | {a_s / b_s:.2f} | {diff:.1e} |", flush=True)
+    print(f"\nafter / before: median {statistics.median(ratios):.2f}, max {max(ratios):.2f}; "
+          f"load average {os.getloadavg()[0]:.2f}")
+
+
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--n1", type=int, default=1024, help="1D profile points")
     ap.add_argument("--n2", type=int, default=256, help="2D surface side")
     ap.add_argument("--repeats", type=int, default=5)
+    ap.add_argument("--try-first", action="store_true",
+                    help="only the loss-dominated dispatch, before (Douglas-Rachford) and after (GMRES first try)")
+    ap.add_argument("--sizes", type=int, nargs="+", default=[128, 256], help="--try-first: 2D surface sides")
+    ap.add_argument("--zetas", type=float, nargs="+", default=[1e-4, 1e-3, 1e-2], help="--try-first: V tau q0")
+    ap.add_argument("--ratio", type=float, default=1000.0, help="--try-first: E_inf / E0")
     args = ap.parse_args(argv)
     info = host_info()
+    if args.try_first:
+        print(f"# loss-dominated dispatch: GMRES first try then Douglas-Rachford, against Douglas-Rachford alone "
+              f"({info.get('cpu', '?')}, contactlib {contactlib.__version__})")
+        try_first(args.sizes, args.zetas, args.ratio, args.repeats)
+        return 0
     print(f"# Douglas-Rachford vs coupled fixed point ({info.get('cpu', '?')}, contactlib {contactlib.__version__}), "
           f"tol 1e-8, medians of {args.repeats}")
     print("\n| scene | max\\|Im M\\|/Re M | coupled: it (outer), residual, s | DR: it, residual, s | t_DR / t_coupled "

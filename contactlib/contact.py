@@ -301,6 +301,10 @@ class _Setup:
                 if first.converged:
                     return first
             if self.operator.periodic and splitting.loss_dominated(self.body.factor):
+                if first is None and self.solver_args["mean_pressure"] is not None and self.operator.preconditionable:
+                    first = self._krylov(first_try=True)  # cheap where it converges, bounded where it diverges
+                    if first.converged:
+                        return first
                 state = self._splitting()
             else:
                 state = solve_coupled(self._symmetric, self.body.coupling, self.values, **self.solver_args)
@@ -322,20 +326,25 @@ class _Setup:
         return (self.operator.periodic and self.solver_args["mean_pressure"] is not None
                 and self.operator.preconditionable and not splitting.loss_dominated(self.body.factor))
 
-    def _krylov(self) -> ContactState:
+    def _krylov(self, first_try: bool = False) -> ContactState:
         """The semismooth Newton loop with GMRES on each contact set (:mod:`contactlib.solvers.krylov`), from the
-        warm start or from the symmetric part's constrained CG stopped early."""
+        warm start or from the symmetric part's constrained CG stopped early. ``first_try`` (a loss-dominated
+        body, Douglas-Rachford after it): within :data:`~contactlib.solvers.krylov.TRY_ITERATIONS` in all,
+        :data:`~contactlib.solvers.krylov.TRY_SET_ITERATIONS` a set, stopped on a residual growing past
+        :data:`~contactlib.solvers.krylov.TRY_GROWTH` times its best (returned unconverged, with its residual)."""
         args = self.solver_args
+        max_iter = min(args["max_iter"], krylov.TRY_ITERATIONS) if first_try else args["max_iter"]
         body = krylov.ComplexCompliance(splitting.fourier_multiplier(self.body.compliance, self.body.coupling),
-                                        self.grid)
+                                        self.grid, cap=krylov.TRY_SET_ITERATIONS if first_try else None)
         start, used = args["initial_pressure"], 0
         if start is None or not np.any(start > 0):
-            first = self._symmetric(self.values, **{**args, "tol": max(krylov.START_TOL, args["tol"])})
+            first = self._symmetric(self.values, **{**args, "tol": max(krylov.START_TOL, args["tol"]),
+                                                    "max_iter": max_iter})
             start, used = first.pressure, first.iterations
-        stall = krylov.Stall()
+        stall = krylov.Stall(growth=krylov.TRY_GROWTH) if first_try else krylov.Stall()
         state = solve_semismooth(body, self.values, mean_pressure=args["mean_pressure"], tol=args["tol"],
-                                 max_iter=args["max_iter"], initial_pressure=start, set_solver=body.solve_on_set,
-                                 name="semismooth-gmres", monitor=stall)
+                                 max_iter=max(max_iter - used, 1), initial_pressure=start,
+                                 set_solver=body.solve_on_set, name="semismooth-gmres", monitor=stall)
         return dataclasses.replace(state, iterations=state.iterations + used, outer_iterations=stall.sets)
 
     def _splitting(self) -> ContactState:

@@ -54,18 +54,42 @@ updates: on a loss-dominated viscoelastic body (``max |Im M| / Re M`` = 16) the 
 grows, where Douglas-Rachford (:mod:`.splitting`) converges."""
 
 
+TRY_ITERATIONS = 400
+"""A first try on a loss-dominated body (:data:`.splitting.SPLIT_ABOVE`), before Douglas-Rachford: the GMRES
+iterations it may use in all (the symmetric start included). Where the loop converges there (E_inf/E0 = 1000,
+zeta = V tau q0 = 1e-4 .. 1e-2, 64^2-512^2 at 10 % and 60 % contact) it took 60-245; where it fails the sets
+grow and, unbounded, their GMRES stagnated (1982 and 7937 iterations on two sets of a 128^2 surface). Failed
+tries stopped after 78-271 (by :data:`TRY_GROWTH`), or this budget, where Douglas-Rachford then takes 500-2800
+iterations of similar cost."""
+
+TRY_GROWTH = 10.0
+"""The first try stops once its residual exceeds this factor times its first set's: there the loop diverges
+(the contact set floods, the residual grows by 1.5-5 per update, from 2-7e-2 to 1e2-1e7 on cold 128^2-512^2
+starts). Converging loops stayed below 2x their first residual; a factor of their best would not do: near the
+answer a set change lifts the residual 100x above a best reached on the previous set."""
+
+TRY_SET_ITERATIONS = 100
+"""The first try's GMRES iterations on one contact set (converging tries used at most 30): a stagnating set
+solve hands back to the Newton loop, whose monitor then sees the residual."""
+
+
 class Stall:
     """The Newton loop's monitor (:func:`.semismooth.solve_semismooth`): counts the set updates (:attr:`sets`)
-    and stops the loop on a stall (:data:`STALL_SETS`) or a residual that is not finite."""
+    and stops the loop on a stall (:data:`STALL_SETS`), a residual that is not finite, or one above ``growth``
+    times the first set's (a first try: :data:`TRY_GROWTH`; :attr:`diverged` says so)."""
 
-    def __init__(self, patience: int = STALL_SETS):
-        self.patience, self.sets, self.best, self.best_set = patience, 0, np.inf, 0
+    def __init__(self, patience: int = STALL_SETS, growth: float = np.inf):
+        self.patience, self.growth, self.sets, self.best, self.best_set = patience, growth, 0, np.inf, 0
+        self.first, self.diverged = None, False
 
     def __call__(self, k: int, residual: float, snapshot) -> bool:
         self.sets = k
+        if self.first is None:
+            self.first = residual
         if residual < 0.9 * self.best:
             self.best, self.best_set = residual, k
-        return not np.isfinite(residual) or k - self.best_set >= self.patience
+        self.diverged = not np.isfinite(residual) or residual > self.growth * self.first
+        return self.diverged or k - self.best_set >= self.patience
 
 
 class ComplexCompliance:
@@ -79,10 +103,13 @@ class ComplexCompliance:
     grid : Grid
     relative : float
         :data:`FORCING`.
+    cap : int, optional
+        GMRES iterations allowed on one set, whatever the Newton loop's budget (a first try:
+        :data:`TRY_SET_ITERATIONS`); the set solve then returns its iterate, unconverged.
     """
 
-    def __init__(self, multiplier: np.ndarray, grid, relative: float = FORCING):
-        self.grid, self.relative = grid, relative
+    def __init__(self, multiplier: np.ndarray, grid, relative: float = FORCING, cap: int | None = None):
+        self.grid, self.relative, self.cap = grid, relative, cap
         self.shape = tuple(grid.shape)
         count = float(np.prod(self.shape))
         # the plan's inverse transform is unnormalised: fold the 1/N into both multipliers
@@ -138,6 +165,8 @@ class ComplexCompliance:
 
         heights = hp[index]
         b = heights - heights.mean()
+        if self.cap is not None:
+            max_iter = min(max_iter, self.cap)
         p, used, mean = gmres(operator, preconditioner, b, p, tol * np.sqrt(n_a), max_iter, relative=relative)
         return p, float(mean - heights.mean()), used
 
