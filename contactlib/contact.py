@@ -19,11 +19,15 @@ from .grid import Grid
 from .inputs import check_friction, check_loads, check_tolerance, check_velocity, grid_of, periodic_of, \
     touches_edge
 from .operators import KERNELS
-from .solvers import krylov
+from .solvers import coarse, krylov
 from .solvers import (ContactState, solve_active_set, solve_coupled, solve_periodic_displacement, solve_polonsky_keer,
                       solve_semismooth, splitting)
 
 METHODS = ("cg", "active-set")
+
+PLATE_GMRES = True
+PLATE_RELATIVE = 0.0
+PLATE_START = None
 
 
 class ConvergenceError(RuntimeError):
@@ -320,17 +324,23 @@ class _Setup:
         symmetric semismooth solver) and not loss-dominated (where the sets cycle; Douglas-Rachford converges):
         the semismooth Newton loop with GMRES on the complex multiplier, the other solvers its fallback."""
         return (self.operator.periodic and self.solver_args["mean_pressure"] is not None
-                and self.operator.preconditionable and not splitting.loss_dominated(self.body.factor))
+                and (self.operator.preconditionable or PLATE_GMRES) and not splitting.loss_dominated(self.body.factor))
 
     def _krylov(self) -> ContactState:
         """The semismooth Newton loop with GMRES on each contact set (:mod:`contactlib.solvers.krylov`), from the
         warm start or from the symmetric part's constrained CG stopped early."""
         args = self.solver_args
-        body = krylov.ComplexCompliance(splitting.fourier_multiplier(self.body.compliance, self.body.coupling),
-                                        self.grid)
+        multiplier = splitting.fourier_multiplier(self.body.compliance, self.body.coupling)
+        op = self.operator
+        if op.preconditionable:
+            body = krylov.ComplexCompliance(multiplier, self.grid)
+        else:  # a plate: GMRES with the soft long waves solved exactly on each set
+            modes = coarse.soft_modes(op.grid, op.multiplier * float(np.prod(op.work_shape)), op.E_star)
+            body = coarse.PlateCompliance(multiplier, self.grid, modes, relative=PLATE_RELATIVE)
         start, used = args["initial_pressure"], 0
-        if start is None or not np.any(start > 0):
-            first = self._symmetric(self.values, **{**args, "tol": max(krylov.START_TOL, args["tol"])})
+        if (start is None or not np.any(start > 0)) and (op.preconditionable or PLATE_START is not None):
+            extra = {} if op.preconditionable else {"max_iter": PLATE_START}
+            first = self._symmetric(self.values, **{**args, "tol": max(krylov.START_TOL, args["tol"]), **extra})
             start, used = first.pressure, first.iterations
         stall = krylov.Stall()
         state = solve_semismooth(body, self.values, mean_pressure=args["mean_pressure"], tol=args["tol"],
