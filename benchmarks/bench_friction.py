@@ -9,7 +9,8 @@ revision in the header) and written with every number to ``--json``:
    ``half-space`` (``--nu`` 0.3: the material coupling ``(1 - 2 nu) / (2 (1 - nu))``),
    ``confined`` (a confined layer, ``--layer-nu`` 0.5, ``q0 h = 1`` with ``q0 = 2 pi / L``: the
    geometric coupling) and, on request, ``thin`` (the same at ``q0 h = 0.1``, where ``max |W|/K``
-   reaches 15 at friction 1). Each scene gets its own mean pressure per contact fraction.
+   reaches 15 at friction 1), and ``plate`` (a remote-pressure layer at ``q0 h = 0.1``, ``--nu``: plate-like,
+   the semismooth solver with the long-wave coarse space). Each scene gets its own mean pressure per contact fraction.
 2. **layer**: frictionless, at the half-space scene's surface and load (``--nu``): a confined layer
    at ``q0 h = 1`` and a thick one (``--thick-q0h`` 20) that :func:`contactlib.bodies.body_model`
    must reduce to the half-space (``attrs['body']``), over the half-space solve.
@@ -67,7 +68,10 @@ SCENES = {
     "half-space": ("nu", None, "material"),
     "confined": ("layer_nu", 1.0, "geometric"),
     "thin": ("layer_nu", 0.1, "geometric"),
+    "plate": ("nu", 0.1, "geometric"),  # a remote-pressure layer (free back face): plate-like at long waves
 }
+BASES = {"plate": "remote_pressure"}
+"""The layer base of a scene (default confined)."""
 
 
 # ----------------------------------------------------------------------------------- solving
@@ -77,9 +81,9 @@ def thickness_for(q0h: float, length: float = 1.0) -> float:
     return q0h * length / (2 * math.pi)
 
 
-def solve_once(heights, *, p, nu, q0h, mu, tol, args, max_iter=10_000) -> tuple[dict, object]:
+def solve_once(heights, *, p, nu, q0h, mu, tol, args, max_iter=10_000, base="confined") -> tuple[dict, object]:
     """One ``contactlib.solve``: its summary and the dataset (the partial one when it did not converge)."""
-    layer = None if q0h is None else contactlib.Layer(thickness_for(q0h), base="confined")
+    layer = None if q0h is None else contactlib.Layer(thickness_for(q0h), base=base)
     t0 = time.perf_counter()
     converged = True
     try:
@@ -112,10 +116,10 @@ class Bench:
                 dim=dim)
         return self.surfaces[dim, n]
 
-    def load(self, dim: int, n: int, nu: float, q0h, target: float) -> tuple[float, float]:
+    def load(self, dim: int, n: int, nu: float, q0h, target: float, base: str = "confined") -> tuple[float, float]:
         """Mean pressure giving contact fraction ``target`` (within ``--calibration-rtol``) on the
         frictionless scene: secant on log A against log p over loose solves."""
-        key = (dim, n, nu, q0h, target)
+        key = (dim, n, nu, q0h, target, base)
         if key in self.loads:
             return self.loads[key]
         a, heights = self.args, self.surface(dim, n)
@@ -123,7 +127,8 @@ class Bench:
         p = target * E_star * a.rms_slope / 2  # A ~ 2 p / (E* h'_rms) on a half-space at small contact
 
         def area(p):
-            return solve_once(heights, p=p, nu=nu, q0h=q0h, mu=0.0, tol=a.calibration_tol, args=a)[0]["contact_area"]
+            return solve_once(heights, p=p, nu=nu, q0h=q0h, mu=0.0, tol=a.calibration_tol, args=a,
+                              base=base)[0]["contact_area"]
 
         A, slope, prev = area(p), 1.0, None
         for _ in range(a.calibration_steps):
@@ -143,7 +148,7 @@ class Bench:
         that a change of the machine's load hits all of them alike. ``reuse``: take a configuration
         measured before from the cache (measurement 3 reuses measurement 2's layer)."""
         a = self.args
-        keys = [(dim, n, c["p"], c["nu"], c["q0h"], c["mu"], a.tol) for c in configs]
+        keys = [(dim, n, c["p"], c["nu"], c["q0h"], c["mu"], a.tol, c.get("base", "confined")) for c in configs]
         if reuse and all(k in self.timed for k in keys):
             return [self.timed[k] for k in keys]
         heights = self.surface(dim, n)
@@ -163,7 +168,7 @@ class Bench:
                        iterations_all_equal=len({r["iterations"] for r in rs}) == 1)
             self.timed[key] = res
             out.append(res)
-            self.log(f"    {dim}D N={n} nu={c['nu']} q0h={c['q0h']} mu={c['mu']} p={c['p']:.5g}: {res['call_s']:.4f} s "
+            self.log(f"    {dim}D N={n} nu={c['nu']} q0h={c['q0h']} {c.get('base', '')} mu={c['mu']} p={c['p']:.5g}: {res['call_s']:.4f} s "
                      f"(solver {res['wall_s']:.4f} s, x{reps}), {res['iterations']} it / {res['outer_iterations']} "
                      f"outer, A={res['contact_area']:.4f}{'' if res['converged'] else ' NOT CONVERGED'}")
         return out
@@ -190,8 +195,9 @@ def bench_friction(bench: Bench) -> list[dict]:
         for scene in args.scenes:
             nu, q0h = scene_nu(args, scene), SCENES[scene][1]
             for target in args.contact:
-                p, a_cal = bench.load(dim, n, nu, q0h, target)
-                base, *coupled = bench.measure(dim, n, [dict(p=p, nu=nu, q0h=q0h, mu=mu)
+                layer_base = BASES.get(scene, "confined")
+                p, a_cal = bench.load(dim, n, nu, q0h, target, layer_base)
+                base, *coupled = bench.measure(dim, n, [dict(p=p, nu=nu, q0h=q0h, mu=mu, base=layer_base)
                                                         for mu in [0.0] + list(args.frictions)])
                 for mu, m in zip(args.frictions, coupled):
                     rows.append({

@@ -138,6 +138,17 @@ class ComplexCompliance:
         """Displacement [length] under ``pressure`` [pressure] (a new array)."""
         return self._convolve(self.forward, None, pressure).copy()
 
+    def preconditioner_for(self, index: np.ndarray):
+        """The right preconditioner of the set solve on ``index``: ``1 / M(q)`` restricted to the set and centred
+        (a field on the set to a new one)."""
+
+        def preconditioner(v):
+            w = self._convolve(self.inverse, index, v).reshape(-1)[index]
+            w -= w.mean()
+            return w
+
+        return preconditioner
+
     def solve_on_set(self, hp: np.ndarray, index: np.ndarray, start: np.ndarray, total: float, tol: float,
                      max_iter: int) -> tuple[np.ndarray, float, int]:
         """``(p on the set, approach, iterations)``: GMRES for ``M_AA p = hp_A + approach``, ``sum p = total``,
@@ -158,11 +169,7 @@ class ComplexCompliance:
             w -= mean
             return w, mean
 
-        def preconditioner(v):
-            w = self._convolve(self.inverse, index, v).reshape(-1)[index]
-            w -= w.mean()
-            return w
-
+        preconditioner = self.preconditioner_for(index)
         heights = hp[index]
         b = heights - heights.mean()
         if self.cap is not None:
