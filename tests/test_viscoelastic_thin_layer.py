@@ -12,6 +12,7 @@ from contactlib.bodies import MINOR_FLOOR, body_model, order_two_minors
 from contactlib.grid import Grid
 from contactlib.kernels.tensor import surface_green_tensor
 from contactlib.kernels.viscoelastic import steady_sliding_factor
+from dense_reference import dense_load_control
 
 SLS = Viscoelastic.standard_linear_solid(E0=1.0, E_inf=10.0, tau=1.0, nu=0.5)
 Q0 = 2 * np.pi  # window of length 1
@@ -40,26 +41,6 @@ def _dense(n, q0h, zeta):
     return column[(i[:, None] - i[None, :]) % n]
 
 
-def _dense_load_control(M, hp, mean_pressure, active):
-    """Primal-dual active sets with LU on each set (``mean(p)`` fixed, the approach its multiplier);
-    None if the sets cycle."""
-    n = hp.size
-    for _ in range(300):
-        idx = np.flatnonzero(active)
-        system = np.zeros((idx.size + 1, idx.size + 1))
-        system[:-1, :-1] = M[np.ix_(idx, idx)]
-        system[:-1, -1], system[-1, :-1] = -1.0, 1.0
-        solution = np.linalg.solve(system, np.append(hp[idx], n * mean_pressure))
-        p = np.zeros(n)
-        p[idx] = solution[:-1]
-        gap = M @ p - hp - solution[-1]
-        following = np.where(active, p > 0, gap < 0)
-        if np.array_equal(following, active):
-            return p
-        active = following
-    return None
-
-
 @pytest.mark.parametrize("mean_pressure", [0.005, 0.05, 0.5])
 def test_non_monotone_thin_layer_matches_the_dense_solve_from_every_start(mean_pressure):
     """q0 h = 0.5, mu_c = 0.8, E_inf/E0 = 10, V tau q0 = 0.3 (symmetric part negative at q0 and 2 q0: the
@@ -75,7 +56,7 @@ def test_non_monotone_thin_layer_matches_the_dense_solve_from_every_start(mean_p
     hp = h.values - h.values.max()
     rng = np.random.default_rng(0)
     starts = [hp >= np.quantile(hp, 0.9)] + [rng.random(hp.size) < f for f in np.linspace(0.05, 0.9, 8)]
-    solutions = [p for p in (_dense_load_control(M, hp, mean_pressure, s) for s in starts) if p is not None]
+    solutions = [p for p in (dense_load_control(M, hp, mean_pressure, s) for s in starts) if p is not None]
     assert len(solutions) >= 6
     p = out.pressure.values
     for reference in solutions:
