@@ -133,7 +133,7 @@ def solve_stack(stack: WindowStack, interference: np.ndarray, *, tol: float, max
     pressure, displacement = np.zeros_like(s), np.zeros_like(s)
     iterations, residual = np.zeros(m, dtype=int), np.full(m, np.inf)
     live = np.arange(m)  # windows still on the stack, and their state below
-    frozen = np.zeros(m, dtype=bool)  # on the stack but done: their pressure no longer moves
+    frozen = np.zeros(m, dtype=bool)  # on the stack but done: answer recorded, held still (tau = 0)
     t = np.zeros_like(p)
     G_old = np.ones(m)
     restart = np.ones(m, dtype=bool)
