@@ -280,7 +280,7 @@ def _label(table: AsperityTable, macro: MacroState, micro: MicroState | None, pa
     else:
         node_area = table.grid.element_area
         force, radius = micro.force, np.sqrt(micro.contact_nodes * node_area / np.pi)
-        contact_area = float(np.count_nonzero(micro.pressure > 0)) / micro.pressure.size
+        contact_area = float(micro.contact_nodes.sum()) / micro.pressure.size  # all the pressure is on footprints
         penetration, iterations, residual = micro.penetration, micro.iterations, micro.residual
     data["force"] = ("asperity", force, a("force"))
     data["contact_radius"] = ("asperity", radius, a("contact_radius"))

@@ -113,16 +113,21 @@ def hertz_pressure_field(table: AsperityTable, grid: Grid, force: np.ndarray, co
     its nodes carry the force exactly [pressure]. ``stack``: :func:`_window_stack`'s nodes and squared
     distances, if at hand."""
     nodes_of, r2 = _window_stack(table, grid, window)[::2] if stack is None else stack
-    h = grid.spacing[0]
+    local = _hertz_stack(force, contact_radius, r2, grid.spacing[0])
+    on = local > 0  # inside each contact disc: the discs lie in disjoint footprints, each node once
+    field = np.zeros(grid.shape)
+    field.ravel()[nodes_of[on]] = local[on]
+    return field
+
+
+def _hertz_stack(force: np.ndarray, contact_radius: np.ndarray, r2: np.ndarray, h: float) -> np.ndarray:
+    """:func:`hertz_pressure_field` on the window stack ``(N, w, w)`` of squared distances ``r2``."""
     loaded = force > 0
     a2 = np.where(loaded, contact_radius, 1.0)[:, None, None] ** 2
     local = np.sqrt(np.clip(1.0 - r2 / a2, 0.0, None)) * loaded[:, None, None]
     total = local.sum(axis=(1, 2)) * h * h
     local *= np.divide(force, total, out=np.zeros_like(total), where=total > 0)[:, None, None]
-    on = local > 0  # inside each contact disc: the discs lie in disjoint footprints, each node once
-    field = np.zeros(grid.shape)
-    field.ravel()[nodes_of[on]] = local[on]
-    return field
+    return local
 
 
 def window_size(table: AsperityTable, *, grid: Grid, contact_radius: np.ndarray) -> int:
@@ -200,9 +205,13 @@ def _solve_in_windows(table: AsperityTable, macro: MacroState, law: HertzLaw, E_
     nodes_of, masks, r2 = _window_stack(table, grid, window)
     on = nodes_of[masks]  # the footprints' nodes (flat, each once: the footprints are disjoint)
     height_stack = heights.ravel()[nodes_of]
-    pressure = hertz_pressure_field(table, grid, macro.force, radius, window, (nodes_of, r2)) \
-        if initial_pressure is None else np.array(initial_pressure, dtype=float)
-    own = pressure.ravel()[nodes_of] * masks  # each asperity's pressure on its window; then the sweeps'
+    if initial_pressure is None:  # Hertz's pressure of the macro forces: its discs lie inside the footprints
+        own = _hertz_stack(macro.force, radius, r2, h) * masks  # each asperity's pressure on its window
+        pressure = np.zeros(grid.shape)
+        pressure.ravel()[on] = own[masks]
+    else:
+        pressure = np.array(initial_pressure, dtype=float)
+        own = pressure.ravel()[nodes_of] * masks
     # the pressure off the footprints (an initial_pressure's only): part of the first sweep's change
     off_footprints = 0.0
     if initial_pressure is not None:
@@ -220,27 +229,32 @@ def _solve_in_windows(table: AsperityTable, macro: MacroState, law: HertzLaw, E_
         top = np.where(masks, local_heights, -np.inf).max(axis=(1, 2))
         low = np.where(masks, local_heights, np.inf).min(axis=(1, 2))
         touching = np.flatnonzero(top > body_level)
-        patches = np.zeros_like(own)
-        solved = np.zeros_like(own)
+        every = touching.size == table.count  # no copies of the stacks for a subset
+        if not every:
+            patches, solved = np.zeros_like(own), np.zeros_like(own)
         if touching.size:
-            m = masks[touching]
+            m = masks if every else masks[touching]
             # off the footprint the window is lowered below the footprint's lowest point: no contact there
             lowered = (low - (top - low))[touching][:, None, None]
-            interference = np.where(m, local_heights[touching], lowered)
+            interference = np.where(m, local_heights if every else local_heights[touching], lowered)
             interference -= body_level
             scale = np.sqrt(np.var(interference.reshape(touching.size, -1), axis=1))
             warm = old_force[touching] > 0
-            start = own[touching]
+            start = own if every else own[touching]  # solve_stack does not write into it
             cold = np.flatnonzero(~warm)
             if cold.size:
+                start = start.copy() if every else start
                 start[cold] = np.maximum(interference[cold], 0.0) / stack.self_compliance
             p_local, u_local, iterations, _ = solve_stack(stack, interference, tol=local_tol,
                                                           max_iter=local_max_iter, initial_pressure=start, scale=scale)
             local_iterations += int(iterations.sum())
             p_local *= m
             _check_inside(p_local, m, touching)
-            patches[touching] = p_local
-            solved[touching] = u_local  # = K_w p_local: the pressure is zero off the footprint
+            if every:
+                patches, solved = p_local, u_local
+            else:
+                patches[touching] = p_local
+                solved[touching] = u_local  # = K_w p_local: the pressure is zero off the footprint
         new_force = patches.sum(axis=(1, 2)) * dA
         factor, step = _coarse_correction(interaction, law, E_star, old_force, new_force, total_force, known_force)
         delta += step
