@@ -65,6 +65,8 @@ class WindowStack:
         if self.window <= DENSE_WINDOW:  # the response of every node to a unit pressure on each: one FFT
             dense = self.operator.matrix(np.arange(self.window * self.window))
             self._dense = np.ascontiguousarray(dense, dtype=np.float32 if single else float)
+        self.dtype = np.dtype(np.float32 if single and self._dense is not None else float)
+        """The precision :func:`solve_stack` iterates in."""
         self._buffers = (np.empty((0, 0), np.float32),) * 2  # single precision's input and output, kept:
         # a fresh float32 array for each product made it slower than the float64 one (measured at 10^3 windows)
 
@@ -126,11 +128,12 @@ def solve_stack(stack: WindowStack, interference: np.ndarray, *, tol: float, max
     if scale is None:
         scale = np.sqrt(np.var(s.reshape(m, -1), axis=1))
     scale = np.where(scale > 0, scale, 1.0)
-    # every window as a row of w^2 nodes: reductions along contiguous rows, in-place updates
-    s = s.reshape(m, -1)
+    # every window as a row of w^2 nodes: reductions along contiguous rows, in-place updates; in the
+    # stack's precision (single: half the memory traffic of every pass, no casts around the products)
+    pressure, displacement = np.zeros((m, shape[1] * shape[2])), np.zeros((m, shape[1] * shape[2]))
+    s = s.reshape(m, -1).astype(stack.dtype, copy=False)
     p = np.maximum(s, 0.0) / stack.self_compliance if initial_pressure is None else \
-        np.maximum(np.asarray(initial_pressure, dtype=float).reshape(m, -1), 0.0)
-    pressure, displacement = np.zeros_like(s), np.zeros_like(s)
+        np.maximum(np.asarray(initial_pressure, dtype=stack.dtype).reshape(m, -1), 0.0)
     iterations, residual = np.zeros(m, dtype=int), np.full(m, np.inf)
     live = np.arange(m)  # windows still on the stack, and their state below
     frozen = np.zeros(m, dtype=bool)  # on the stack but done: answer recorded, held still (tau = 0)
@@ -172,7 +175,7 @@ def solve_stack(stack: WindowStack, interference: np.ndarray, *, tol: float, max
         kt = stack(t.reshape(-1, *shape[1:])).reshape(t.shape)
         tkt = np.einsum("ki,ki->k", t, kt)
         gt = np.einsum("ki,ki->k", g_contact, t)
-        tau = np.where(tkt > 0, gt / np.where(tkt > 0, tkt, 1.0), 1.0 / stack.self_compliance)
+        tau = np.where(tkt > 0, gt / np.where(tkt > 0, tkt, 1.0), 1.0 / stack.self_compliance).astype(stack.dtype)
         tau[frozen] = 0.0
         p -= tau[:, None] * t
         np.maximum(p, 0.0, out=p)

@@ -220,7 +220,8 @@ def _solve_in_windows(table: AsperityTable, macro: MacroState, law: HertzLaw, E_
     change, force_change, it, local_iterations = np.inf, np.inf, 0, 0
     own_displacement = None  # K_w p_k of each asperity's current pressure, from its last local solve
     for it in range(1, max_iter + 1):
-        displacement = global_op(pressure)
+        global_op.load()[...] = pressure
+        displacement = global_op.convolve()  # a view of the FFT buffer: read at once below, not kept
         body_level = z_top - delta  # undeformed body surface
         old_force = own.sum(axis=(1, 2)) * dA
         if own_displacement is None:
