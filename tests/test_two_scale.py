@@ -512,3 +512,32 @@ def test_frozen_windows_give_the_answer_of_immediate_removal(monkeypatch):
         np.testing.assert_array_equal(other[2], at_once[2])
         np.testing.assert_allclose(other[0], at_once[0], rtol=0, atol=1e-12 * at_once[0].max())
         np.testing.assert_allclose(other[1], at_once[1], rtol=0, atol=1e-12 * np.abs(at_once[1]).max())
+
+
+def test_known_initial_displacement_saves_a_product_and_nothing_else():
+    """A warm start whose displacement the caller has (the sweeps' ``K_w p``): the same answer and
+    iterations as computing it, one product fewer."""
+    from contactlib.two_scale.local import WindowStack, solve_stack
+
+    w, h = 16, 0.01
+    stack = WindowStack(w, h, E_STAR)
+    x = (np.arange(w) - w // 2) * h
+    r2 = x[:, None] ** 2 + x[None, :] ** 2
+    interference = np.array([3e-4 * k - r2 / (2 * 0.8) for k in (1.0, 1.5, 2.0)])
+    start = np.maximum(interference, 0.0) * 0.5 / stack.self_compliance  # a rough warm start
+    counted = []
+    original = stack.__call__
+
+    class Counting(WindowStack):
+        def __call__(self, pressure):
+            counted.append(pressure.shape[0])
+            return original(pressure)
+
+    stack.__class__ = Counting
+    plain = solve_stack(stack, interference, tol=1e-8, max_iter=500, initial_pressure=start)
+    products = len(counted)
+    known = solve_stack(stack, interference, tol=1e-8, max_iter=500, initial_pressure=start,
+                        initial_displacement=original(start))
+    assert len(counted) - products == products - 1
+    np.testing.assert_array_equal(known[2], plain[2])
+    np.testing.assert_allclose(known[0], plain[0], rtol=0, atol=1e-12 * plain[0].max())

@@ -97,7 +97,8 @@ class WindowStack:
 
 
 def solve_stack(stack: WindowStack, interference: np.ndarray, *, tol: float, max_iter: int,
-                initial_pressure: np.ndarray | None = None, scale: np.ndarray | None = None):
+                initial_pressure: np.ndarray | None = None, scale: np.ndarray | None = None,
+                initial_displacement: np.ndarray | None = None):
     """Frictionless contact of every window of the stack at a fixed rigid approach.
 
     Parameters
@@ -114,6 +115,8 @@ def solve_stack(stack: WindowStack, interference: np.ndarray, *, tol: float, max
         Warm start [pressure]; default ``max(s, 0)`` over the window's own compliance.
     scale : ndarray, shape (M,), optional
         Each window's height scale of the residual [length] (default: rms of ``s``).
+    initial_displacement : ndarray, optional
+        ``K`` applied to ``initial_pressure`` [length], if the caller has it (saves a product).
 
     Returns
     -------
@@ -141,8 +144,10 @@ def solve_stack(stack: WindowStack, interference: np.ndarray, *, tol: float, max
     G_old = np.ones(m)
     restart = np.ones(m, dtype=bool)
     per_node = float(s.shape[1])
+    known = None if initial_displacement is None else \
+        np.asarray(initial_displacement).reshape(m, -1).astype(stack.dtype, copy=False)
     for it in range(max_iter + 1):
-        u = stack(p.reshape(-1, *shape[1:])).reshape(p.shape)
+        u = known if it == 0 and known is not None else stack(p.reshape(-1, *shape[1:])).reshape(p.shape)
         g = u - s
         # the residual of contactlib.solvers.contact_residual, per window (max(-g, 0) = (|g| - g) / 2)
         magnitude = np.abs(g)

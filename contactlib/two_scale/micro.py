@@ -246,8 +246,11 @@ def _solve_in_windows(table: AsperityTable, macro: MacroState, law: HertzLaw, E_
             if cold.size:
                 start = start.copy() if every else start
                 start[cold] = np.maximum(interference[cold], 0.0) / stack.self_compliance
+            # the warm start's displacement is at hand (own_displacement = K_w own): one product fewer
+            known = None if cold.size else (own_displacement if every else own_displacement[touching])
             p_local, u_local, iterations, _ = solve_stack(stack, interference, tol=local_tol,
-                                                          max_iter=local_max_iter, initial_pressure=start, scale=scale)
+                                                          max_iter=local_max_iter, initial_pressure=start, scale=scale,
+                                                          initial_displacement=known)
             local_iterations += int(iterations.sum())
             p_local *= m
             _check_inside(p_local, m, touching)
