@@ -286,7 +286,8 @@ def _solve_in_windows(table: AsperityTable, macro: MacroState, law: HertzLaw, E_
         elif force_change <= force_tol and force_error <= force_tol:
             break
     displacement = global_op(pressure)
-    gap = displacement + z_top - heights - delta
+    gap = displacement + (z_top - delta)
+    gap -= heights
     force = own.sum(axis=(1, 2)) * dA
     nodes = np.count_nonzero(own > 0, axis=(1, 2))
     below = gap < 0
