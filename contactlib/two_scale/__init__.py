@@ -127,7 +127,10 @@ def solve(
         ``force_tol`` times the largest force (and, under load control, the total force is within
         ``force_tol``) [1]; ``tol`` is then unused. The sweep contracts the force error by about 10x
         on every field measured (``benchmarks/RESULTS.md``), so the forces are then well within
-        ``force_tol`` of the full solver's: the choice for a target error in the forces.
+        ``force_tol`` of the full solver's: the choice for a target error in the forces. Local solves
+        run at 0.1 of ``force_tol`` (or of ``tol``), in single precision when that is 1e-4 or more
+        (their rounding, about 1e-6 of the displacement, is then far below it;
+        ``micro.SINGLE_PRECISION_TOL``).
     macro_tol : float
         Macro: Newton residual, relative to the largest local penetration [1]. The default 1e-8 leaves
         the forces within about 1e-9 of the converged ones, seven orders below the point-load model's

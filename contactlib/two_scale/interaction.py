@@ -25,7 +25,10 @@ the zero-mean shift. ``alpha`` scales with the mean spacing ``L / sqrt(N)``, so 
 where a dense ``N x N`` matrix would take 800 MB. Why Ewald and not a plain cut-off: a zero-mean
 periodic ``1/r`` sum converges only conditionally, and a cut-off leaves an error falling like
 ``1/r_c``; why not an FFT on the surface's own grid: the macro step would then cost as much per
-product as one iteration of the full solver.
+product as one iteration of the full solver. Why no dense matrix at small ``N``: a product with it is
+4-20x cheaper (10^3: 0.19 ms against 0.8 ms; 10^2: 6 us against 0.14 ms), but building it takes ``N``
+products (0.8 s at 10^3, 13 ms at 10^2), while a solve needs 20-40 (macro Newton and the coarse
+corrections): it would pay only past about ``N`` products, which no solve reaches at any size.
 """
 
 from __future__ import annotations
