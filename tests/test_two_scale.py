@@ -293,7 +293,7 @@ def test_many_sagging_asperities_converge_with_the_coarse_correction(monkeypatch
     assert float(two.mean_pressure) == pytest.approx(float(full.mean_pressure), rel=1e-4)
     # plain block Jacobi (no coarse correction) does not converge on the same field
     from contactlib.two_scale import micro
-    monkeypatch.setattr(micro, "_coarse_correction", lambda *args: (np.ones(table.count), 0.0))
+    monkeypatch.setattr(micro, "_coarse_correction", lambda *args, **kwargs: (np.ones(table.count), 0.0))
     with pytest.raises((contactlib.ConvergenceError, ValueError)):
         ts.solve(field, E=E, nu=NU, penetration=approach, tol=1e-4, max_iter=12)
 
