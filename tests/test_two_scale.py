@@ -208,7 +208,7 @@ def test_newton_through_asperities_entering_contact():
     h = contactlib.surfaces.spheres(64, radius=0.05, lattice=6, summit_height=0.004, height_std=0.0005, seed=1)
     counts = []
     for load in (1e-8, 1e-7, 1e-6, 5e-6):
-        out = ts.solve(h, E=E, nu=NU, mean_pressure=load, scale="macro")
+        out = ts.solve(h, E=E, nu=NU, mean_pressure=load, scale="macro", macro_tol=1e-10)
         assert out.attrs["macro_residual"] <= 1e-10 and out.attrs["macro_iterations"] < 30
         assert float(out.mean_pressure) == pytest.approx(load, rel=1e-9)
         counts.append(int(np.count_nonzero(out.force.values)))
@@ -293,7 +293,7 @@ def test_many_sagging_asperities_converge_with_the_coarse_correction(monkeypatch
     assert float(two.mean_pressure) == pytest.approx(float(full.mean_pressure), rel=1e-4)
     # plain block Jacobi (no coarse correction) does not converge on the same field
     from contactlib.two_scale import micro
-    monkeypatch.setattr(micro, "_coarse_correction", lambda *args: (np.ones(table.count), 0.0))
+    monkeypatch.setattr(micro, "_coarse_correction", lambda *args, **kwargs: (np.ones(table.count), 0.0))
     with pytest.raises((contactlib.ConvergenceError, ValueError)):
         ts.solve(field, E=E, nu=NU, penetration=approach, tol=1e-4, max_iter=12)
 
@@ -427,3 +427,117 @@ def test_coarse_ewald_mesh_matches_the_fine_one(monkeypatch):
     u_fine = fine(forces)
     assert np.max(np.abs(coarse(forces) - u_fine)) < 3e-7 * np.max(np.abs(u_fine))
     np.testing.assert_allclose(coarse.diagonal, fine.diagonal, rtol=1e-9)
+
+
+def test_contact_compliance_cg_matches_a_dense_solve():
+    """The macro step's own preconditioned CG: ``(D_A^-1 + T_AA) y_A = b_A`` against a dense solve of the
+    matrix assembled column by column from the Ewald operator, some asperities out of contact; the
+    product ``T y`` it sums from its iterations equals ``T`` applied to its answer."""
+    from contactlib.two_scale.macro import solve_contact_compliance
+
+    field = ts.random_asperity_field(40, coverage=0.2, nodes_per_spacing=8, seed=2)
+    table = ts.asperity_table(field)
+    op = ts.PointInteraction(table, E_STAR)
+    rng = np.random.default_rng(2)
+    slope = rng.uniform(0.5, 2.0, table.count) * 0.05
+    slope[::5] = 0.0  # out of contact
+    rhs = rng.standard_normal(table.count) * 1e-3
+    y, product = solve_contact_compliance(op, slope, rhs, rtol=1e-12, with_product=True)
+    T = np.column_stack([op(unit) for unit in np.eye(table.count)])
+    active = slope > 0
+    dense = np.diag(1.0 / slope[active]) + T[np.ix_(active, active)]
+    expected = np.linalg.solve(dense, rhs[active])
+    np.testing.assert_allclose(y[active], expected, rtol=0, atol=1e-10 * np.abs(expected).max())
+    assert np.all(y[~active] == 0)
+    np.testing.assert_allclose(product, op(y), rtol=0, atol=1e-10 * np.abs(op(y)).max())
+
+
+def test_default_macro_tolerance_is_far_below_the_model_error():
+    """The default ``macro_tol`` (1e-8) against a 1e-13 solve: forces within 1e-7 of the largest, where the
+    point-load model itself is 0.5-1 % off (``benchmarks/RESULTS.md``)."""
+    field = ts.random_asperity_field(300, coverage=0.4, nodes_per_spacing=8, seed=1)
+    approach = float(field.max()) - 0.6 * float(np.mean(ts.asperity_table(field).summit_height))
+    default = ts.solve(field, E=E, nu=NU, penetration=approach, scale="macro", fields=False)
+    tight = ts.solve(field, E=E, nu=NU, penetration=approach, scale="macro", fields=False, macro_tol=1e-13)
+    assert default.attrs["macro_tol"] == 1e-8 and default.attrs["macro_residual"] <= 1e-8
+    assert np.max(np.abs(default.force.values - tight.force.values)) < 1e-7 * float(tight.force.max())
+
+
+def test_single_precision_window_products_agree_with_double(monkeypatch):
+    """Loose local tolerances apply the window compliance in float32: each product within 2e-6 of the
+    float64 one, and a two-scale solve at ``force_tol=1e-2`` (local solves at 1e-3) gives forces within
+    1e-5 of the largest of the same solve in double precision (300 asperities, coverage 0.2)."""
+    from contactlib.two_scale import micro
+    from contactlib.two_scale.local import WindowStack
+
+    pressure = np.random.default_rng(4).uniform(size=(7, 16, 16))
+    double, single = WindowStack(16, 0.01, E_STAR), WindowStack(16, 0.01, E_STAR, single=True)
+    assert single._dense.dtype == np.float32 and double._dense.dtype == np.float64
+    exact = double(pressure)
+    assert single(pressure).dtype == np.float64
+    np.testing.assert_allclose(single(pressure), exact, rtol=0, atol=2e-6 * np.abs(exact).max())
+    np.testing.assert_allclose(single(pressure[:3]), exact[:3], rtol=0, atol=2e-6 * np.abs(exact).max())
+
+    field = ts.random_asperity_field(300, coverage=0.2, nodes_per_spacing=24, seed=0)
+    approach = float(field.max()) - 0.6 * float(np.mean(ts.asperity_table(field).summit_height))
+    fast = ts.solve(field, E=E, nu=NU, penetration=approach, force_tol=1e-2)
+    assert 0.1 * 1e-2 >= micro.SINGLE_PRECISION_TOL  # the float32 path was the one taken
+    monkeypatch.setattr(micro, "SINGLE_PRECISION_TOL", np.inf)
+    slow = ts.solve(field, E=E, nu=NU, penetration=approach, force_tol=1e-2)
+    assert fast.attrs["micro_iterations"] == slow.attrs["micro_iterations"]
+    assert np.max(np.abs(fast.force.values - slow.force.values)) < 1e-5 * float(slow.force.max())
+
+
+def test_frozen_windows_give_the_answer_of_immediate_removal(monkeypatch):
+    """Done windows stay on the stack, frozen, until a quarter of it is done: the same pressures and
+    iteration counts as dropping each the moment it is done (``COMPACT`` 0), and as keeping all to the
+    end (``COMPACT`` 1)."""
+    from contactlib.two_scale import local
+    from contactlib.two_scale.local import WindowStack, solve_stack
+
+    w, h = 16, 0.01
+    stack = WindowStack(w, h, E_STAR)
+    x = (np.arange(w) - w // 2) * h
+    rng = np.random.default_rng(7)
+    caps = [-((x[:, None] - c[0]) ** 2 + (x[None, :] - c[1]) ** 2) / (2 * (0.5 + rng.random()))
+            for c in rng.random((40, 2)) * h]
+    interference = np.array([c - c.max() for c in caps]) + 3e-4 * (1 + rng.random(40))[:, None, None]
+    batched = solve_stack(stack, interference, tol=1e-7, max_iter=500)
+    monkeypatch.setattr(local, "COMPACT", 0.0)
+    at_once = solve_stack(stack, interference, tol=1e-7, max_iter=500)
+    monkeypatch.setattr(local, "COMPACT", 1.0)
+    kept = solve_stack(stack, interference, tol=1e-7, max_iter=500)
+    assert len(set(batched[2])) > 1  # the windows finish at different iterations
+    for other in (batched, kept):
+        np.testing.assert_array_equal(other[2], at_once[2])
+        np.testing.assert_allclose(other[0], at_once[0], rtol=0, atol=1e-12 * at_once[0].max())
+        np.testing.assert_allclose(other[1], at_once[1], rtol=0, atol=1e-12 * np.abs(at_once[1]).max())
+
+
+def test_known_initial_displacement_saves_a_product_and_nothing_else():
+    """A warm start whose displacement the caller has (the sweeps' ``K_w p``): the same answer and
+    iterations as computing it, one product fewer."""
+    from contactlib.two_scale.local import WindowStack, solve_stack
+
+    w, h = 16, 0.01
+    stack = WindowStack(w, h, E_STAR)
+    x = (np.arange(w) - w // 2) * h
+    r2 = x[:, None] ** 2 + x[None, :] ** 2
+    interference = np.array([3e-4 * k - r2 / (2 * 0.8) for k in (1.0, 1.5, 2.0)])
+    start = np.maximum(interference, 0.0) * 0.5 / stack.self_compliance  # a rough warm start
+    counted = []
+    original = stack.__call__
+
+    class Counting(WindowStack):
+        def __call__(self, pressure):
+            counted.append(pressure.shape[0])
+            return original(pressure)
+
+    stack.__class__ = Counting
+    plain = solve_stack(stack, interference, tol=1e-8, max_iter=500, initial_pressure=start)
+    products = len(counted)
+    known = solve_stack(stack, interference, tol=1e-8, max_iter=500, initial_pressure=start,
+                        initial_displacement=original(start))
+    assert len(counted) - products == products - 1
+    np.testing.assert_array_equal(known[2], plain[2])
+    np.testing.assert_allclose(known[0], plain[0], rtol=0, atol=1e-12 * plain[0].max())

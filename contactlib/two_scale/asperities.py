@@ -80,7 +80,7 @@ class AsperityTable:
         """In-plane distance between summits ``k`` and ``l`` (nearest periodic image) [length]."""
         d = self.centers[k] - self.centers[l]
         if self.periodic:
-            d = (d + self.length / 2) % self.length - self.length / 2
+            d -= self.length * np.rint(d / self.length)
         return np.sqrt(np.sum(d**2, axis=-1))
 
 

@@ -25,7 +25,10 @@ the zero-mean shift. ``alpha`` scales with the mean spacing ``L / sqrt(N)``, so 
 where a dense ``N x N`` matrix would take 800 MB. Why Ewald and not a plain cut-off: a zero-mean
 periodic ``1/r`` sum converges only conditionally, and a cut-off leaves an error falling like
 ``1/r_c``; why not an FFT on the surface's own grid: the macro step would then cost as much per
-product as one iteration of the full solver.
+product as one iteration of the full solver. Why no dense matrix at small ``N``: a product with it is
+4-20x cheaper (10^3: 0.19 ms against 0.8 ms; 10^2: 6 us against 0.14 ms), but building it takes ``N``
+products (0.8 s at 10^3, 13 ms at 10^2), while a solve needs 20-40 (macro Newton and the coarse
+corrections): it would pay only past about ``N`` products, which no solve reaches at any size.
 """
 
 from __future__ import annotations
@@ -107,11 +110,10 @@ class PointInteraction:
             m = sfft.next_fast_len(m + 1, real=True)
         h = L / m
         q = 2 * np.pi * np.sqrt(np.fft.fftfreq(m, h)[:, None] ** 2 + np.fft.rfftfreq(m, h)[None, :] ** 2)
-        multiplier = np.zeros_like(q)
-        nz = q > 0
-        multiplier[nz] = 2.0 / (self.E_star * q[nz]) * erfc(q[nz] / (2 * alpha)) * np.exp((q[nz] * s) ** 2)
         long_range = np.zeros_like(q)
+        nz = q > 0
         long_range[nz] = 2.0 / (self.E_star * q[nz]) * erfc(q[nz] / (2 * alpha))
+        multiplier = long_range * np.exp((q * s) ** 2)
         # fftw's inverse is unnormalised: the 1/m^2 goes into the multiplier
         self._multiplier, self._mesh = multiplier / (m * m), m
         self._gather = _gaussian_gather(table.centers, L, m, s)
@@ -160,7 +162,7 @@ def _gaussian_gather(centers: np.ndarray, L: float, m: int, s: float) -> sparse.
     gx = np.exp(-((ix * h - centers[:, 0:1]) ** 2) / (2 * s * s)) / (math.sqrt(2 * math.pi) * s)
     gy = np.exp(-((iy * h - centers[:, 1:2]) ** 2) / (2 * s * s)) / (math.sqrt(2 * math.pi) * s)
     n = len(centers)
-    columns = ((ix % m)[:, :, None] * m + (iy % m)[:, None, :]).reshape(n, p * p)
+    columns = ((ix % m).astype(np.int32)[:, :, None] * m + (iy % m).astype(np.int32)[:, None, :]).reshape(n, p * p)
     values = (gx[:, :, None] * gy[:, None, :]).reshape(n, p * p)
     indptr = np.arange(n + 1) * (p * p)
     return sparse.csr_matrix((values.ravel(), columns.ravel(), indptr), shape=(n, m * m))

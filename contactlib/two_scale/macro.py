@@ -29,8 +29,8 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.sparse.linalg import LinearOperator, cg
 
+from ..solvers.state import dot
 from .asperities import AsperityTable
 from .interaction import PointInteraction
 
@@ -168,34 +168,55 @@ def solve_macro(table: AsperityTable, interaction: PointInteraction, law: HertzL
 
 def _newton_solve(interaction: PointInteraction, slope: np.ndarray, rhs: np.ndarray, *,
                   rtol: float = 1e-12) -> np.ndarray:
-    """Solve ``(I + T D) x = rhs``, ``D = diag(slope)``, through the SPD system on the contact set."""
-    return rhs - interaction(solve_contact_compliance(interaction, slope, rhs, rtol=rtol))
+    """Solve ``(I + T D) x = rhs``, ``D = diag(slope)``, through the SPD system on the contact set
+    (``x = rhs - T y``, with ``T y`` from the conjugate gradients' own products)."""
+    _, product = solve_contact_compliance(interaction, slope, rhs, rtol=rtol, with_product=True)
+    return rhs - product
 
 
 def solve_contact_compliance(interaction: PointInteraction, slope: np.ndarray, rhs: np.ndarray, *,
-                             rtol: float = 1e-12) -> np.ndarray:
+                             rtol: float = 1e-12, with_product: bool = False):
     """``y`` with ``(D_A^-1 + T_AA) y_A = rhs_A`` on the asperities in contact ``A = {slope > 0}`` and 0
     elsewhere: the compliance of the contacts (each Hertz contact's own, ``1 / slope``, plus the
-    interaction) inverted by preconditioned conjugate gradients [force per unit of ``rhs``]."""
-    active = np.flatnonzero(slope > 0)
+    interaction) inverted by conjugate gradients preconditioned by the diagonal, to ``||r|| <= rtol
+    ||rhs_A||`` [force per unit of ``rhs``]. ``with_product``: also return ``T y`` on every asperity,
+    summed from the iteration's own products ``T p`` (no extra product).
+
+    A loop of its own rather than :func:`scipy.sparse.linalg.cg`: at 10^3 asperities a product costs
+    0.6 ms, and the wrappers around it cost as much again per call."""
     n = slope.size
     y = np.zeros(n)
+    product = np.zeros(n)
+    active = np.flatnonzero(slope > 0)
     if active.size:
+        every = active.size == n  # all in contact: no scatter and gather around each product
         compliance = 1.0 / slope[active]  # each Hertz contact's own compliance 1/(2 E* a)
+        inverse = 1.0 / (compliance + np.maximum(interaction.diagonal[active], 0.0))
+        r = rhs[active].astype(float)
+        target = max(rtol, 1e-12) * math.sqrt(dot(r, r))
+        x = np.zeros(active.size)
         full = np.zeros(n)
-
-        def matvec(v):
-            full[...] = 0.0
-            full[active] = v
-            return compliance * v + interaction(full)[active]
-
-        operator = LinearOperator((active.size, active.size), matvec=matvec, dtype=float)
-        precondition = LinearOperator((active.size, active.size),
-                                      matvec=lambda v: v / (compliance + np.maximum(interaction.diagonal[active], 0)),
-                                      dtype=float)
-        y_active, _ = cg(operator, rhs[active], rtol=max(rtol, 1e-12), atol=0.0, maxiter=10 * active.size + 100, M=precondition)
-        y[active] = y_active
-    return y
+        z = inverse * r
+        rz = dot(r, z)
+        direction = z
+        for _ in range(10 * active.size + 100):
+            if math.sqrt(dot(r, r)) <= target:
+                break
+            if every:
+                t_full = interaction(direction)
+            else:
+                full[active] = direction
+                t_full = interaction(full)
+            applied = compliance * direction + (t_full if every else t_full[active])
+            step = rz / dot(direction, applied)
+            x += step * direction
+            product += step * t_full
+            r -= step * applied
+            z = inverse * r
+            rz, rz_old = dot(r, z), rz
+            direction = z + (rz / rz_old) * direction
+        y[active] = x
+    return (y, product) if with_product else y
 
 
 def _uncoupled_approach(offsets: np.ndarray, law: HertzLaw, total_force: float) -> float:
