@@ -1,0 +1,89 @@
+"""The non-symmetric scenes of :func:`contactlib.solve` (Coulomb friction coupled, steady viscoelastic sliding):
+which of the three solvers of this class runs, and in what order the others follow it.
+
+* The semismooth Newton loop with GMRES on each contact set (:mod:`.solvers.krylov`; on plates with the
+  long-wave coarse space, :class:`.solvers.coarse.PlateCompliance`): periodic scenes under load control.
+* The fixed point on the skew part around the symmetric constrained solver (:mod:`.solvers.coupled`):
+  displacement control, non-periodic windows, and the fallback of the first.
+* Douglas-Rachford on the whole complex multiplier (:mod:`.solvers.splitting`): loss-dominated bodies,
+  after a bounded first try of the Newton loop, and the last fallback.
+
+A converged answer is preferred to an unconverged one, and of two unconverged ones the smaller residual.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+
+import numpy as np
+
+from .solvers import ContactState, coarse, krylov, solve_coupled, solve_semismooth, splitting
+
+
+class NonSymmetricSolve:
+    """The dispatch of a scene with a skew part, mixed into :class:`contactlib.contact._Setup` (which gives
+    ``body``, ``grid``, ``values``, ``solver_args``, ``operator`` and ``_symmetric``)."""
+
+    def _run_nonsymmetric(self) -> ContactState:
+        """Solve a scene with a skew part, as the module docstring says."""
+        first = None
+        if self._krylov_applies():
+            first = self._krylov()
+            if first.converged:
+                return first
+        if self.operator.periodic and splitting.loss_dominated(self.body.factor):
+            if first is None and self.solver_args["mean_pressure"] is not None and self.operator.preconditionable:
+                first = self._krylov(first_try=True)  # cheap where it converges, bounded where it diverges
+                if first.converged:
+                    return first
+            state = self._splitting()
+        else:
+            state = solve_coupled(self._symmetric, self.body.coupling, self.values, **self.solver_args)
+            if not state.converged and self.operator.periodic:  # a stalled outer loop: the method that needs no split
+                fallback = self._splitting()
+                state = fallback if fallback.residual < state.residual else state
+        if first is None or (state.converged and not first.converged):
+            return state
+        return state if not first.converged and state.residual <= first.residual else first
+
+    def _krylov_applies(self) -> bool:
+        """Periodic, load-controlled and not loss-dominated (where the sets cycle; Douglas-Rachford converges):
+        the semismooth Newton loop with GMRES on the complex multiplier, the other solvers its fallback. A
+        plate-like body's GMRES carries the long-wave coarse space (:class:`.coarse.PlateCompliance`)."""
+        return (self.operator.periodic and self.solver_args["mean_pressure"] is not None
+                and not splitting.loss_dominated(self.body.factor))
+
+    def _krylov(self, first_try: bool = False) -> ContactState:
+        """The semismooth Newton loop with GMRES on each contact set (:mod:`contactlib.solvers.krylov`), from the
+        warm start or from the symmetric part's constrained CG stopped early. ``first_try`` (a loss-dominated
+        body, Douglas-Rachford after it): within :data:`~contactlib.solvers.krylov.TRY_ITERATIONS` in all,
+        :data:`~contactlib.solvers.krylov.TRY_SET_ITERATIONS` a set, stopped on a residual growing past
+        :data:`~contactlib.solvers.krylov.TRY_GROWTH` times its first set's (returned unconverged, with its
+        residual)."""
+        args = self.solver_args
+        max_iter = min(args["max_iter"], krylov.TRY_ITERATIONS) if first_try else args["max_iter"]
+        multiplier = splitting.fourier_multiplier(self.body.compliance, self.body.coupling)
+        op = self.operator
+        if op.preconditionable:
+            body = krylov.ComplexCompliance(multiplier, self.grid, cap=krylov.TRY_SET_ITERATIONS if first_try else None)
+        else:  # a plate: GMRES with the soft long waves solved exactly on each set
+            modes = coarse.soft_modes(op.grid, op.multiplier * float(np.prod(op.work_shape)), op.E_star)
+            body = coarse.PlateCompliance(multiplier, self.grid, modes)
+        start, used = args["initial_pressure"], 0
+        if start is None or not np.any(start > 0):
+            tol = max(krylov.START_TOL, args["tol"])
+            # a plate's semismooth start stops at that residual: asked to converge to it, its loose set solves
+            # cycled between sets (2000 CG iterations at 50 % contact on 2^14 points, 260 to converge to 1e-8)
+            stop = None if op.preconditionable else (lambda k, residual, snapshot: residual <= tol)
+            first = self._symmetric(self.values, **{**args, "tol": tol, "max_iter": max_iter}, monitor=stop)
+            start, used = first.pressure, first.iterations
+        stall = krylov.Stall(growth=krylov.TRY_GROWTH) if first_try else krylov.Stall()
+        state = solve_semismooth(body, self.values, mean_pressure=args["mean_pressure"], tol=args["tol"],
+                                 max_iter=max(max_iter - used, 1), initial_pressure=start,
+                                 set_solver=body.solve_on_set, name="semismooth-gmres", monitor=stall)
+        return dataclasses.replace(state, iterations=state.iterations + used, outer_iterations=stall.sets)
+
+    def _splitting(self) -> ContactState:
+        """Douglas-Rachford on the whole complex multiplier (:mod:`contactlib.solvers.splitting`)."""
+        multiplier = splitting.fourier_multiplier(self.body.compliance, self.body.coupling)
+        return splitting.solve_splitting(multiplier, self.values, **self.solver_args)
