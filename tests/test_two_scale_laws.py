@@ -44,7 +44,7 @@ def test_tabulated_cone_is_sneddon(cone_law):
     assert np.all(np.diff(cone_law.force(d)) > 0)
 
 
-def _cones(n=384):
+def five_cones(n=384):
     """Five cones of slope SLOPE and different summit heights on a flat base, two of them close."""
     centers = [[0.2, 0.2], [0.42, 0.25], [0.72, 0.3], [0.25, 0.72], [0.65, 0.7]]
     summit = np.array([0.008, 0.0083, 0.0079, 0.0085, 0.0081])
@@ -62,7 +62,7 @@ def test_interacting_cones_match_the_full_solver(cone_law):
     """Five interacting cones: the two-scale method with the tabulated law within 1 % of the full FFT solver
     on the same grid in every asperity force (measured 2e-8), the macro step within 1 % (measured 0.03 %);
     load control, 7-9 nodes per contact radius."""
-    h = _cones()
+    h = five_cones()
     load = 4e-4
     full = contactlib.solve(h, E=E, nu=NU, mean_pressure=load)
     table = ts.asperity_table(h, footprint_radius=cone_law.footprint_radius)
@@ -80,7 +80,7 @@ def test_interacting_cones_match_the_full_solver(cone_law):
 
 
 def test_tabulated_law_refusals(cone_law):
-    h = _cones(128)
+    h = five_cones(128)
     d = np.geomspace(1e-4, 2e-3, 5)  # Sneddon's cone tabulated only to 2e-3
     short = ts.TabulatedLaw(d, 2 / math.pi * E_STAR * d**2 / SLOPE, 2 * d / (math.pi * SLOPE), footprint_radius=0.09,
                             attrs={"law_E_star": E_STAR})

@@ -8,6 +8,7 @@ import pytest
 
 import contactlib
 import contactlib.two_scale as ts
+from test_two_scale_laws import SLOPE, five_cones
 
 NU = 0.5
 
@@ -150,30 +151,15 @@ def test_bad_asperities_are_refused():
         ts.solve_transient(table, material=sls(), times=[0.0], mean_pressure=1e-5, scale="macro")
 
 
-def creeping_cones(n=384, slope=0.1):
-    """Five periodic cones of flank slope ``slope`` and different summit heights, two of them close; the
-    spheres' table of :func:`contactlib.surfaces.spheres` gives the centres and summits."""
-    centers = [[0.2, 0.2], [0.42, 0.25], [0.72, 0.3], [0.25, 0.72], [0.65, 0.7]]
-    summit = np.array([0.008, 0.0083, 0.0079, 0.0085, 0.0081])
-    h = contactlib.surfaces.spheres(n, radius=0.5, centers=centers, summit_height=summit)
-    x = np.arange(n) / n
-    cones = np.zeros((n, n))
-    for (cx, cy), z in zip(centers, summit):
-        dx = (x - cx + 0.5) % 1 - 0.5
-        dy = (x - cy + 0.5) % 1 - 0.5
-        cones = np.maximum(cones, z - slope * np.sqrt(dx[:, None] ** 2 + dy[None, :] ** 2))
-    return h.copy(data=cones)
-
-
 def test_creeping_cones_with_a_tabulated_law_match_the_full_transient_solver():
     """Five interacting cones creeping under a constant load (contact radii 4 to 8 nodes, the forces shift
     between asperities by up to 15 %): a cone law tabulated at E = 1 and used at every step's modulus. The
     two-scale method within 2 % of contactlib.solve_transient in every asperity force (measured 5e-8), the
     macro step too (measured 8e-4); Hertz's law in the same macro step is 10-28 % off."""
-    slope, m = 0.1, sls()
-    law = ts.tabulated_law(lambda r: slope * np.asarray(r), footprint_radius=0.09, max_penetration=0.006,
+    m = sls()
+    law = ts.tabulated_law(lambda r: SLOPE * np.asarray(r), footprint_radius=0.09, max_penetration=0.006,
                            E=1.0, nu=NU, nodes=96, points=10)
-    h = creeping_cones(slope=slope)
+    h = five_cones()
     times = np.array([0.0, 0.5, 2.0, 8.0])
     full = contactlib.solve_transient(h, material=m, times=times, mean_pressure=4e-4, save_fields=True)
     table = ts.asperity_table(h, footprint_radius=law.footprint_radius)
@@ -190,7 +176,7 @@ def test_creeping_cones_with_a_tabulated_law_match_the_full_transient_solver():
     assert np.all(np.abs(macro.force.values - reference) < 2e-2 * scale)
     assert np.abs(hertz.force.values - reference).max() > 0.05 * scale.max()
     assert two.attrs["single_asperity_law"] == "tabulated" and macro.attrs["law_points"] == 10
-    short = ts.tabulated_law(lambda r: slope * np.asarray(r), footprint_radius=0.09, max_penetration=0.0025,
+    short = ts.tabulated_law(lambda r: SLOPE * np.asarray(r), footprint_radius=0.09, max_penetration=0.0025,
                              E=1.0, nu=NU, nodes=64, points=5)
     with pytest.raises(ValueError, match="exceeds the table's max_penetration"):  # the creep goes past it
         ts.solve_transient(h, material=m, times=times, mean_pressure=4e-4, law=short, scale="macro")
