@@ -45,7 +45,6 @@ RECENT_BUILDS = 4
 """Preconditioners kept for reuse (:func:`two_level`): a frictional plate's outer loop starts each inner solve
 on the contact set the last one ended on."""
 
-_recent: list = []  # (operator, modes, active, TwoLevel), most recent last
 
 
 def soft_modes(grid, transfer: np.ndarray, E_star: float, *, softening: float = COARSE_SOFTENING,
@@ -75,13 +74,15 @@ def soft_modes(grid, transfer: np.ndarray, E_star: float, *, softening: float = 
 def two_level(operator, modes: np.ndarray, active: np.ndarray) -> "TwoLevel":
     """:class:`TwoLevel` of ``operator`` on ``active``, reused when one of the last :data:`RECENT_BUILDS` was
     built for the same operator object, modes and set (a build costs one FFT pair per coarse field)."""
-    for k, entry in enumerate(_recent):
-        if entry[0] is operator and np.array_equal(entry[1], modes) and np.array_equal(entry[2], active):
-            _recent.append(_recent.pop(k))
-            return entry[3]
+    # kept on the operator, so the builds (m x |A| fields each) go with the scene, not with the process
+    recent = operator.__dict__.setdefault("_two_level_builds", [])  # (modes, active, TwoLevel), latest last
+    for k, entry in enumerate(recent):
+        if np.array_equal(entry[0], modes) and np.array_equal(entry[1], active):
+            recent.append(recent.pop(k))
+            return entry[2]
     built = TwoLevel(operator, modes, active)
-    _recent.append((operator, modes, active.copy(), built))
-    del _recent[:-RECENT_BUILDS]
+    recent.append((modes, active.copy(), built))
+    del recent[:-RECENT_BUILDS]
     return built
 
 
