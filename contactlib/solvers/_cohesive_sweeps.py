@@ -3,7 +3,9 @@
 Each round of :class:`contactlib.solvers.cohesive._FrozenTraction` evaluates the cohesive law at the new
 gap, the residual of the state, and an Anderson mixing step: in numpy some thirty passes over the grid
 and their temporaries, which cost as much per round as one or two Polonsky-Keer iterations (256^2). Here
-they are three sweeps. Arrays are flat and contiguous.
+they are three sweeps. Arrays are flat and contiguous, except in :func:`frozen_state` and
+:func:`move_heights`, the two sweeps of a round inside a running Polonsky-Keer solve
+(:mod:`.cohesive_rounds`), which read and write its buffers as 2D (maybe strided) views.
 """
 
 from __future__ import annotations

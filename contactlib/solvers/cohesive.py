@@ -13,8 +13,10 @@ Two methods, tried in this order:
    control) solves, on any body it handles. The law then gives the next ``a = a(g)``; Anderson mixing
    accelerates that fixed point, and each round runs only :data:`INNER_ITERATIONS` warm-started CG
    iterations (a full inner solve on the dual path and on a plate-like remote-pressure layer, whose CG
-   is not preconditioned), so a solve costs about twice the non-adhesive
-   one's iterations on a 2D rough surface (``benchmarks/bench_adhesion.py``). A cold start is the first
+   is not preconditioned). Where the inner solver is the preconditioned Polonsky-Keer one the rounds run
+   inside one solve of it whose heights move (:mod:`.cohesive_rounds`: a round costs one FFT pair beside
+   its CG iterations, no set-up), so a solve costs about twice the non-adhesive one on a 2D rough surface
+   (``benchmarks/bench_adhesion.py``). A cold start is the first
    round itself (``a = 0``). Where the fixed point converges slowly (its gain ``|a'| K`` over the
    process zone is near 1 on a single smooth contact with a resolved zone: the JKR sphere, a 1D wavy
    profile), it stops after :data:`STALL_ROUNDS` rounds without a :data:`STALL_DROP` fall.
