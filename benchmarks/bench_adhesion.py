@@ -8,7 +8,8 @@ N = 256). Both laws. Tolerances: tamaas 1e-10 on its own residual, contactlib 1e
 runs (a warm-up first; tamaas' from ``--peer-warm-up-below`` on is not warmed up: minutes a solve), the ratio
 contactlib / tamaas measured in the same run, the adhesive / non-adhesive ratio (the two interleaved, medians),
 the adhesive solve's CG iterations and frozen-traction rounds against the plain solve's iterations, its method,
-and the differences in area and mean gap.
+and the differences in area and mean gap. ``adh/plain cpu`` is the same ratio in process time (medians of the
+same pairs): on a machine shared with other jobs it moves less than the wall-clock one.
 
     python benchmarks/bench_adhesion.py --sizes 256 512 1024 --repeats 3
 """
@@ -52,6 +53,7 @@ def main(argv=None):
                         help="warm tamaas up only below this N (its solves at 1024^2 take minutes)")
     args = parser.parse_args(argv)
     print(f"{'N':>5} {'law':>12} {'tamaas s':>9} {'contactlib s':>12} {'ratio':>6} {'plain s':>8} {'adh/plain':>9} "
+          f"{'adh/plain cpu':>13} "
           f"{'its':>4} {'rounds':>6} {'plain its':>9} {'method':>15} {'d area':>8} {'d gap/gap':>9}")
     for n in args.sizes:
         h = contactlib.surfaces.self_affine(n, hurst=0.8, q_roll=4, q_cutoff=32, rms_slope=0.1, seed=1)
@@ -65,19 +67,22 @@ def main(argv=None):
                                      args.repeats if args.peer_repeats is None else args.peer_repeats,
                                      warm=n < args.peer_warm_up_below)
             # the adhesive and the plain solve interleaved, so that both see the same load on the machine
-            times, plain_times = [], []
+            times, plain_times, cpu, plain_cpu = [], [], [], []
             for k in range(args.repeats + 1):
-                start = time.perf_counter()
+                start, start_cpu = time.perf_counter(), time.process_time()
                 ds = contactlib.solve(h, E=1.0, nu=0.0, mean_pressure=LOAD, tol=1e-8, adhesion=law)
-                middle = time.perf_counter()
+                middle, middle_cpu = time.perf_counter(), time.process_time()
                 plain = contactlib.solve(h, E=1.0, nu=0.0, mean_pressure=LOAD, tol=1e-8)
                 if k:  # the first pair is the warm-up
                     times.append(middle - start)
                     plain_times.append(time.perf_counter() - middle)
+                    cpu.append(middle_cpu - start_cpu)
+                    plain_cpu.append(time.process_time() - middle_cpu)
             t_ours, t_plain = statistics.median(times), statistics.median(plain_times)
+            cpu_ratio = statistics.median(cpu) / statistics.median(plain_cpu)
             gap = float(ds.gap.mean() - ds.gap.min())
             print(f"{n:>5} {model:>12} {t_peer:>9.3f} {t_ours:>12.3f} {t_ours / t_peer:>6.2f} {t_plain:>8.3f} "
-                  f"{t_ours / t_plain:>9.2f} {int(ds.iterations):>4} {int(ds.outer_iterations):>6} "
+                  f"{t_ours / t_plain:>9.2f} {cpu_ratio:>13.2f} {int(ds.iterations):>4} {int(ds.outer_iterations):>6} "
                   f"{int(plain.iterations):>9} "
                   f"{ds.attrs['solver'].split()[0]:>15} {float(ds.contact_area) - peer['contact_area']:>+8.1e} "
                   f"{(gap - peer['mean_gap']) / peer['mean_gap']:>+9.1e}", flush=True)

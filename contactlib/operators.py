@@ -206,6 +206,22 @@ class IterationTransforms:
             _spectrum_pass(_affine_spectrum, spectrum)(spectrum, self._multiplier, self._offset, offset_scale)
         return self._workspace.inverse("displacement")[self.operator._block]
 
+    def lower_offset(self, field: np.ndarray) -> np.ndarray:
+        """Subtract ``K field`` from the offset in Fourier space and return ``K field`` [length] (a view of
+        the block, valid until the next call): one FFT pair on buffers of its own. A solver whose heights
+        move with a traction (the frozen-traction cohesive rounds, :mod:`contactlib.solvers.cohesive_rounds`)
+        moves them without a new set-up; on a zero-padded grid the offset is then right on the block only,
+        which is all :meth:`displacement` returns."""
+        op = self.operator
+        plan = fft.get_fft(op.work_shape, slot="offset")
+        if not op.periodic:
+            plan.real.fill(0.0)
+        plan.real[op._block] = field
+        spectrum = _rows(plan.forward())
+        _spectrum_pass(_scale_spectrum, spectrum)(spectrum, self._multiplier)
+        self._offset -= spectrum  # the offset is kept as FFT(offset) / size: the multiplier has the 1 / size
+        return plan.inverse()[op._block]
+
     def precondition(self) -> tuple[np.ndarray, float]:
         """``(P residual, <residual, P residual>)``: a view of the block, and the sum over the grid."""
         spectrum = _rows(self._workspace.forward("residual"))

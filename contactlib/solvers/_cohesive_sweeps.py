@@ -3,7 +3,9 @@
 Each round of :class:`contactlib.solvers.cohesive._FrozenTraction` evaluates the cohesive law at the new
 gap, the residual of the state, and an Anderson mixing step: in numpy some thirty passes over the grid
 and their temporaries, which cost as much per round as one or two Polonsky-Keer iterations (256^2). Here
-they are three sweeps. Arrays are flat and contiguous.
+they are three sweeps. Arrays are flat and contiguous, except in :func:`frozen_state` and
+:func:`move_heights`, the two sweeps of a round inside a running Polonsky-Keer solve
+(:mod:`.cohesive_rounds`), which read and write its buffers as 2D (maybe strided) views.
 """
 
 from __future__ import annotations
@@ -76,3 +78,25 @@ def anderson_mix(x, image, dx, df, gamma, m, beta, lower, upper, out):
             out[i] -= gk * (dx[k, i] + beta * df[k, i])
     for i in range(x.size):
         out[i] = min(max(out[i], lower), upper)
+
+
+@_jit
+def frozen_state(q, factor, w, approach, a, total, gap):
+    """The state of a round inside the Polonsky-Keer solve (2D arrays, ``q`` and ``w`` maybe strided views of its
+    buffers): ``total = factor q + a`` (the traction) and ``gap = factor w - approach``."""
+    for i in range(q.shape[0]):
+        for j in range(q.shape[1]):
+            total[i, j] = factor * q[i, j] + a[i, j]
+            gap[i, j] = factor * w[i, j] - approach
+
+
+@_jit
+def move_heights(w, hp, u, factor, new_factor):
+    """Lower the heights ``hp`` by ``u`` (2D arrays) and move ``w = K q - hp / factor`` to the lowered heights and
+    ``new_factor``: ``w += hp (1 / factor - 1 / new_factor) + u / new_factor``, ``hp -= u``."""
+    shift = 1.0 / factor - 1.0 / new_factor
+    inverse = 1.0 / new_factor
+    for i in range(w.shape[0]):
+        for j in range(w.shape[1]):
+            w[i, j] += hp[i, j] * shift + u[i, j] * inverse
+            hp[i, j] -= u[i, j]

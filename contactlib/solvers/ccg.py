@@ -58,6 +58,7 @@ def solve_polonsky_keer(
     verify: Callable[[ContactState], float] | None = None,
     verify_below: float | None = None,
     restart_fraction: float = RESTART_FRACTION,
+    rounds=None,
 ) -> ContactState:
     """Solve for the contact pressure under load or displacement control.
 
@@ -94,6 +95,14 @@ def solve_polonsky_keer(
     restart_fraction : float
         Restart the conjugacy when a step re-enters more than this fraction of the contact points
         (:data:`RESTART_FRACTION`); 0 restarts on any re-entry, as Polonsky & Keer do.
+    rounds : object, optional
+        Outer rounds that move the heights during the solve, without a new set-up (the frozen-traction
+        cohesive iteration, :class:`contactlib.solvers.cohesive_rounds.Rounds`). At each evaluation where
+        ``rounds.due(iteration, residual)``, ``rounds.advance(p, factor, w, approach, hp, transforms)`` either
+        returns None, which ends the solve at this iterate, or moves the heights: it lowers ``hp`` and the
+        transforms' offset by ``K`` of a field, updates ``w`` to them in place and returns the new
+        ``(mean_pressure, factor)`` (``(None, 1.0)`` under displacement control); the conjugacy then restarts.
+        Only ``rounds`` ends such a solve before ``max_iter``: give ``tol`` 0.
     """
     load_control = mean_pressure is not None
     # Periodic displacement control has no load constraint to centre the direction, and the
@@ -153,6 +162,17 @@ def solve_polonsky_keer(
             comp, pen, G, psum = sweeps.measure(w, factor, approach, p, masked if precondition else unused, precondition)
             residual = (comp + psum * pen / n) / (psum * scale) if psum > 0 else pen / (n * scale)
             own = residual
+            if rounds is not None and rounds.due(it, residual):
+                moved = rounds.advance(p, factor, w, approach, hp, transforms)
+                if moved is None:
+                    break
+                mean_pressure, factor = moved  # the same p and contact set on the new heights
+                if load_control:
+                    approach = factor * sweeps.contact_sum(w, contact) / n_contact
+                comp, pen, G, psum = sweeps.measure(w, factor, approach, p, masked if precondition else unused,
+                                                    precondition)
+                residual = own = (comp + psum * pen / n) / (psum * scale) if psum > 0 else pen / (n * scale)
+                restart, best, best_it = True, np.inf, it
             if verify is not None and residual <= (tol if verify_below is None else verify_below):
                 residual = max(residual, verify(_state(p * factor, factor * w - approach, hp, shape, approach, it,
                                                        residual, tol)))
@@ -190,7 +210,7 @@ def solve_polonsky_keer(
             restart = n_overlap > restart_fraction * n_contact
             if load_control:
                 if psum <= 0:  # lost every point: restart from the highest point
-                    p[...] = np.where(hp == 0.0, 1.0, 0.0)
+                    p[...] = np.where(hp == hp.max(), 1.0, 0.0)
                     np.greater(p, 0.0, out=contact)
                     psum, n_contact, restart = p.sum(), int(np.count_nonzero(contact)), True
                 factor = mean_pressure * n / psum

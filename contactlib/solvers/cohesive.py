@@ -13,8 +13,10 @@ Two methods, tried in this order:
    control) solves, on any body it handles. The law then gives the next ``a = a(g)``; Anderson mixing
    accelerates that fixed point, and each round runs only :data:`INNER_ITERATIONS` warm-started CG
    iterations (a full inner solve on the dual path and on a plate-like remote-pressure layer, whose CG
-   is not preconditioned), so a solve costs about twice the non-adhesive
-   one's iterations on a 2D rough surface (``benchmarks/bench_adhesion.py``). A cold start is the first
+   is not preconditioned). Where the inner solver is the preconditioned Polonsky-Keer one the rounds run
+   inside one solve of it whose heights move (:mod:`.cohesive_rounds`: a round costs one FFT pair beside
+   its CG iterations, no set-up), so a solve costs about twice the non-adhesive one on a 2D rough surface
+   (``benchmarks/bench_adhesion.py``). A cold start is the first
    round itself (``a = 0``). Where the fixed point converges slowly (its gain ``|a'| K`` over the
    process zone is near 1 on a single smooth contact with a resolved zone: the JKR sphere, a 1D wavy
    profile), it stops after :data:`STALL_ROUNDS` rounds without a :data:`STALL_DROP` fall.
@@ -47,6 +49,8 @@ import numpy as np
 
 from . import _cohesive_sweeps as sweeps
 from ..adhesion import MAUGIS_RAMP
+from .ccg import solve_polonsky_keer
+from .cohesive_rounds import Rounds
 from .state import ContactState, height_scale
 
 MAX_NEWTON = 60
@@ -94,7 +98,10 @@ MAX_ROUNDS = 100
 INNER_ITERATIONS = 3
 """CG iterations of the primal inner solve a round (256^2 rough scene: 2 took 36-40 iterations in 18-20
 rounds, 3 took 39-42 in 13-14, uncapped 66-105 in 8-12; a round's restart costs about one iteration)."""
-"""Bound on the rounds of the frozen-traction iteration before the Newton solve takes over."""
+
+CONTINUED = True
+"""Run the rounds inside one Polonsky-Keer solve that moves its heights (:mod:`.cohesive_rounds`) where the inner
+solve is that one; False restarts it each round (the dual path and an unpreconditioned CG always do)."""
 
 STALL_ROUNDS = 4
 STALL_DROP = 0.25
@@ -239,9 +246,12 @@ class _FrozenTraction:
         dual = not operator.definite and mean_pressure is None
         full = dual or not operator.preconditionable  # an unpreconditioned CG (plate-like layer) crawls too
         self.cap = {} if INNER_ITERATIONS is None or full else {"max_iter": INNER_ITERATIONS}
+        # where the inner solve is the preconditioned Polonsky-Keer one (what constrained_solve runs there), the
+        # rounds go on inside one solve of it instead of restarting it (.cohesive_rounds)
+        self.continued = CONTINUED and not full and INNER_ITERATIONS is not None
 
     def __call__(self, p, delta):
-        law, heights, top = self.law, self.heights, float(self.heights.max())
+        law, heights = self.law, self.heights
         if p is None:  # cold: no adhesive traction yet, the inner solver's own start
             a, q = np.zeros_like(heights), None
         else:
@@ -249,11 +259,59 @@ class _FrozenTraction:
                 delta = float(np.min(self.op(p) + self.measure.h0))
             a = law.traction(self.op(p) + self.measure.h0 - delta)
             q = np.maximum(p - a, 0.0)
-        mix = _Anderson(heights.size, -law.peak_stress, 0.0)
-        image = np.empty_like(heights)  # the law's traction at the last gap
-        inner_tol, history, iterations = FIRST_INNER_TOL, [], 0
+        self.mix = _Anderson(heights.size, -law.peak_stress, 0.0)
+        self.image = np.empty_like(heights)  # the law's traction at the last gap
+        self.inner_tol, self.history, self.rounds, self.residual = FIRST_INNER_TOL, [], 0, np.inf
+        result = self._continued(a, q) if self.continued else self._restarted(a, q)
+        if result is None:
+            return None
+        p, delta, g, iterations = result
+        # the last sweep left the law's traction at g in image: the repulsive part without another evaluation
+        p_r = p - self.image
+        closed = np.where(p_r > self.measure.c * g, p_r, 0.0)
+        return p, delta, g, closed, iterations, self.rounds, self.residual, self.residual <= self.tol
+
+    def judge(self, p, g) -> bool:
+        """One round's verdict on the state ``(p, g)``: its residual (:attr:`residual`, the law's traction at
+        ``g`` in :attr:`image`), and whether to go on (not converged, not stalled, rounds left); if so the
+        next inner tolerance (:attr:`inner_tol`)."""
+        self.rounds += 1
+        residual = self.residual = self._residual(p, g, self.image)
+        if residual <= self.tol or not np.isfinite(residual) or self.rounds >= MAX_ROUNDS:
+            return False
+        history = self.history
+        history.append(residual)
+        if len(history) > STALL_ROUNDS and min(history[-STALL_ROUNDS:]) > STALL_DROP * min(history[:-STALL_ROUNDS]):
+            return False  # too slow (a contact edge that moves a few elements a round): Newton takes over
+        self.inner_tol = max(min(self.inner_tol, INNER_FRACTION * residual), INNER_FLOOR * self.tol)
+        return True
+
+    def _continued(self, a, q):
+        """The rounds inside one Polonsky-Keer solve (:mod:`.cohesive_rounds`): ``(p, delta, g, iterations)``,
+        or None where the adhesive traction alone would carry the load."""
+        shifted = self.heights - self.op(a) if q is not None else self.heights
+        lift = float(shifted.max()) - float(self.heights.max())  # the solve's approach counts from there
+        load = None
+        if self.load is not None:
+            load = self.load - float(a.mean())
+            if load <= 0.0:
+                return None
+        rounds = Rounds(self, a, load, INNER_ITERATIONS)
+        state = solve_polonsky_keer(self.op, shifted, mean_pressure=load,
+                                    penetration=None if load is not None else self.penetration + lift,
+                                    tol=0.0, max_iter=MAX_ROUNDS * (INNER_ITERATIONS + 1), initial_pressure=q,
+                                    rounds=rounds)
+        if rounds.unloaded:
+            return None
+        # the solve stopped where judge did, before any move: its state is the one judged (a, not yet mixed)
+        return state.pressure + rounds.a, state.penetration - lift, state.gap, state.iterations
+
+    def _restarted(self, a, q):
+        """A new inner solve each round (the dual path, an unpreconditioned CG): ``(p, delta, g, iterations)``,
+        or None where the adhesive traction alone would carry the load."""
+        heights, top, iterations = self.heights, float(self.heights.max()), 0
         shifted = np.empty_like(heights)  # h - K a, rewritten each round (the inner solve keeps no reference)
-        for rounds in range(1, MAX_ROUNDS + 1):
+        while True:
             self.op(a, out=shifted)
             np.subtract(heights, shifted, out=shifted)
             lift = float(shifted.max()) - top  # the approach is counted from the highest shifted point
@@ -261,26 +319,17 @@ class _FrozenTraction:
                 load = self.load - float(a.mean())
                 if load <= 0.0:  # the adhesive traction alone carries the load: no repulsive contact left
                     return None
-                inner = self.solve(shifted, mean_pressure=load, penetration=None, tol=inner_tol,
+                inner = self.solve(shifted, mean_pressure=load, penetration=None, tol=self.inner_tol,
                                    initial_pressure=q, **self.cap)
             else:
                 inner = self.solve(shifted, mean_pressure=None, penetration=self.penetration + lift,
-                                   tol=inner_tol, initial_pressure=q, **self.cap)
+                                   tol=self.inner_tol, initial_pressure=q, **self.cap)
             iterations += inner.iterations
             q, g, delta = inner.pressure, inner.gap, inner.penetration - lift
             p = q + a
-            residual = self._residual(p, g, image)
-            if residual <= self.tol or not np.isfinite(residual):
-                break
-            history.append(residual)
-            if len(history) > STALL_ROUNDS and min(history[-STALL_ROUNDS:]) > STALL_DROP * min(history[:-STALL_ROUNDS]):
-                break  # too slow (a contact edge that moves a few elements a round): Newton takes over
-            inner_tol = max(min(inner_tol, INNER_FRACTION * residual), INNER_FLOOR * self.tol)
-            a = mix(a, image)
-        # the last sweep left the law's traction at g in image: the repulsive part without another evaluation
-        p_r = p - image
-        closed = np.where(p_r > self.measure.c * g, p_r, 0.0)
-        return p, delta, g, closed, iterations, rounds, residual, residual <= self.tol
+            if not self.judge(p, g):
+                return p, delta, g, iterations
+            a = self.mix(a, self.image)
 
     def _residual(self, p, g, image):
         """:meth:`_Newton.residual_of` (mean interpenetration) in one sweep, writing the law's traction at

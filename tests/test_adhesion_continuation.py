@@ -1,0 +1,107 @@
+"""The frozen-traction cohesive rounds inside one Polonsky-Keer solve (``contactlib.solvers.cohesive_rounds``):
+the moved heights against a direct convolution, the answer against the rounds that restart the solve each time
+and against the semi-smooth Newton solver (an independent method), under load and displacement control."""
+
+import numpy as np
+import pytest
+
+import contactlib
+import contactlib.solvers.cohesive as cohesive
+from contactlib.grid import Grid
+from contactlib.inputs import grid_of
+from contactlib.operators import Compliance
+from contactlib.solvers.cohesive import solve_cohesive
+
+WORK, RANGE = 4e-5, 4e-3  # sigma_0 = 0.01 (exponential): a process zone of a few elements on 64^2
+
+
+def rough():
+    return contactlib.surfaces.self_affine(64, hurst=0.8, q_roll=2, q_cutoff=16, rms_slope=0.1, seed=2)
+
+
+@pytest.mark.parametrize("periodic", [True, False])
+@pytest.mark.parametrize("shape", [(48, 40), (96,)])
+def test_lower_offset_moves_the_heights(periodic, shape):
+    """After ``lower_offset(f)`` the transforms' displacement is ``K p - (hp - K f)`` on the grid, and the field
+    returned is ``K f``: against the operator's own convolution, periodic and zero-padded, 2D and 1D."""
+    rng = np.random.default_rng(5)
+    op = Compliance(Grid(shape, (1.0,) * len(shape)), E_star=2.0, periodic=periodic)
+    p, hp, f = (rng.standard_normal(shape) for _ in range(3))
+    with op.iteration_transforms(offset=hp) as transforms:
+        transforms.pressure[...] = p
+        np.testing.assert_allclose(transforms.displacement(1.0), op(p) - hp, atol=1e-12)
+        np.testing.assert_allclose(transforms.lower_offset(f), op(f), atol=1e-12)
+        np.testing.assert_allclose(transforms.displacement(0.5), op(p) - 0.5 * (hp - op(f)), atol=1e-12)
+        transforms.lower_offset(-2.0 * f)  # the moves add up
+        np.testing.assert_allclose(transforms.displacement(1.0), op(p) - (hp + op(f)), atol=1e-12)
+
+
+def solve_both(monkeypatch, h, **scene):
+    """The scene solved with the rounds inside one solve, and with a solve restarted each round."""
+    inside = contactlib.solve(h, E=1.0, nu=0.0, tol=1e-10, **scene)
+    monkeypatch.setattr(cohesive, "CONTINUED", False)
+    restarted = contactlib.solve(h, E=1.0, nu=0.0, tol=1e-10, **scene)
+    monkeypatch.setattr(cohesive, "CONTINUED", True)
+    return inside, restarted
+
+
+def check_against_newton(ds, h, law, *, periodic=True, start=None, **load):
+    """The state is the cohesive contact of its traction: the gap by a fresh convolution of the traction is the
+    solve's, its residual (mean interpenetration) is at the tolerance, and the semi-smooth Newton solver started
+    from ``start`` (default: the non-adhesive state of the scene) lands on the same traction."""
+    values, grid, _, _ = grid_of(h)
+    op = Compliance(grid, E_star=1.0, periodic=periodic)
+    p, delta = ds.pressure.values, float(ds.penetration)
+    gap = op(p) + values.max() - values - delta
+    scale = float(values.std())
+    assert np.max(np.abs(gap - ds.gap.values)) < 1e-9 * scale
+    newton = cohesive._Newton(op, values, law, load.get("mean_pressure"), load.get("penetration"), 1e-10, 60)
+    assert newton.residual_of(p, gap, largest=False)[-1] < 2e-10
+    start = contactlib.solve(h, E=1.0, nu=0.0, periodic=periodic, **load) if start is None else start
+    state, _ = solve_cohesive(op, values, adhesion=law, tol=1e-10, initial_pressure=start.pressure.values,
+                              initial_penetration=float(start.penetration), **load)
+    assert state.converged and state.solver.startswith("cohesive-newton")
+    assert np.max(np.abs(state.pressure - p)) < 1e-5 * np.max(np.abs(p))
+    assert np.count_nonzero(state.pressure > 0) == pytest.approx(np.count_nonzero(p > 0), abs=2)
+
+
+@pytest.mark.parametrize("model", ["exponential", "maugis"])
+def test_rounds_inside_one_solve_under_load(monkeypatch, model):
+    h = rough()
+    law = contactlib.Adhesion(work=WORK, range=RANGE, model=model)
+    inside, restarted = solve_both(monkeypatch, h, mean_pressure=0.002, adhesion=law)
+    for ds in (inside, restarted):
+        assert ds.attrs["solver"].startswith("cohesive-frozen-traction") and ds.attrs["converged"] == 1
+    # the same iterates, moved in place instead of set up anew: equal to round-off, in as many rounds
+    np.testing.assert_allclose(inside.pressure, restarted.pressure, rtol=0, atol=1e-12 * law.peak_stress)
+    assert int(inside.outer_iterations) == int(restarted.outer_iterations)
+    assert float(inside.mean_pressure) == pytest.approx(0.002, rel=1e-9)
+    check_against_newton(inside, h, law, mean_pressure=0.002)
+
+
+@pytest.mark.parametrize("model", ["exponential", "maugis"])
+def test_rounds_inside_one_solve_under_displacement_zero_padded(monkeypatch, model):
+    """Zero-padded displacement control runs Polonsky-Keer too (a definite compliance): its heights move on
+    the block of a padded grid."""
+    h = rough()
+    law = contactlib.Adhesion(work=WORK, range=RANGE, model=model)
+    penetration = float(h.std())
+    inside, restarted = solve_both(monkeypatch, h, penetration=penetration, periodic=False, adhesion=law)
+    assert inside.attrs["solver"].startswith("cohesive-frozen-traction") and inside.attrs["converged"] == 1
+    np.testing.assert_allclose(inside.pressure, restarted.pressure, rtol=0, atol=1e-12 * law.peak_stress)
+    assert float(inside.mean_pressure) < 0.0 < float(inside.contact_area)  # adhesion pulls more than it pushes
+    check_against_newton(inside, h, law, periodic=False, penetration=penetration)
+
+
+def test_tensile_load_from_a_warm_start():
+    """Under a tensile mean traction (warm-started, as along a path) the repulsive solve carries
+    ``P - mean(a) > 0`` and the rounds still converge to the Newton solver's state."""
+    h = rough()
+    law = contactlib.Adhesion(work=WORK, range=RANGE, model="maugis")
+    warm = contactlib.solve(h, E=1.0, nu=0.0, mean_pressure=1e-4, tol=1e-10, adhesion=law)
+    ds = contactlib.solve(h, E=1.0, nu=0.0, mean_pressure=-3e-4, tol=1e-10, adhesion=law,
+                          initial_pressure=warm.pressure.values)
+    assert ds.attrs["solver"].startswith("cohesive-frozen-traction") and ds.attrs["converged"] == 1
+    assert float(ds.mean_pressure) == pytest.approx(-3e-4, rel=1e-9)
+    assert float(ds.contact_area) < float(warm.contact_area)
+    check_against_newton(ds, h, law, start=warm, mean_pressure=-3e-4)
