@@ -45,6 +45,34 @@ def test_gmres_solves_a_dense_nonsymmetric_system():
     assert 10 < used < 500  # it restarted, and converged
 
 
+def test_gmres_workspace_and_compiled_sweeps():
+    """A kept workspace (larger than needed, holding a former solve's values) gives the same bits as a fresh one;
+    the set's scatter and centred gather are numpy's fancy indexing and mean."""
+    rng = np.random.default_rng(1)
+    n = 40
+    skew = rng.normal(size=(n, n))
+    A = np.eye(n) * 3 + 0.3 * rng.normal(size=(n, n)) + (skew - skew.T)
+    b = rng.normal(size=n)
+    fresh = krylov.gmres(lambda v: (A @ v, 0.0), lambda v: v.copy(), b, np.zeros(n), 1e-12, 300, restart=8)[0]
+    workspace = rng.normal(size=(2 * 8 + 1) * n + 17)
+    kept = krylov.gmres(lambda v: (A @ v, 0.0), lambda v: v.copy(), b, np.zeros(n), 1e-12, 300, restart=8,
+                        workspace=workspace)[0]
+    assert np.array_equal(fresh, kept)
+    assert np.linalg.norm(A @ kept - b) <= 1e-11 * np.linalg.norm(b)
+
+    field, index = rng.normal(size=100), np.sort(rng.choice(100, 37, replace=False))
+    values = rng.normal(size=37)
+    scattered = rng.normal(size=100)
+    krylov.sweeps.scatter(scattered, index, values)
+    expected = np.zeros(100)
+    expected[index] = values
+    assert np.array_equal(scattered, expected)
+    out = np.empty(37)
+    mean = krylov.sweeps.gather_centred(field, index, out)
+    assert mean == pytest.approx(field[index].mean(), rel=1e-14)
+    np.testing.assert_allclose(out, field[index] - field[index].mean(), rtol=0, atol=1e-14)
+
+
 CASES = {
     "friction 1D half-space nu 0.3": dict(dim=1, material=Elastic(1.0, 0.3), P=0.05, friction=1.0),
     "friction 2D half-space nu 0.3": dict(dim=2, material=Elastic(1.0, 0.3), P=0.05, friction=1.0),

@@ -24,6 +24,7 @@ from __future__ import annotations
 import numpy as np
 
 from .. import fft
+from . import _krylov_sweeps as sweeps
 from .state import dot
 
 RESTART = 30
@@ -121,6 +122,7 @@ class ComplexCompliance:
         self.inverse = inverse / count
         self._plan = fft.get_fft(self.shape, slot="krylov")
         self._last = np.zeros(int(count), dtype=bool)  # the last call's contact set
+        self._workspace = np.empty(0)  # GMRES's basis and directions, grown to the largest set so far
 
     def _convolve(self, multiplier: np.ndarray, index: np.ndarray | None, values: np.ndarray) -> np.ndarray:
         """``M values`` of a field that is ``values`` on ``index`` (None: everywhere) and 0 elsewhere."""
@@ -128,11 +130,16 @@ class ComplexCompliance:
         if index is None:
             real[...] = values.reshape(self.shape)
         else:
-            real.fill(0.0)
-            real.reshape(-1)[index] = values
+            sweeps.scatter(real.reshape(-1), index, values)
         spectrum = self._plan.forward()
         spectrum *= multiplier
         return self._plan.inverse()
+
+    def _on_set(self, multiplier: np.ndarray, index: np.ndarray, values: np.ndarray) -> tuple[np.ndarray, float]:
+        """``(M values)`` on ``index``, centred (a new array), and the mean removed."""
+        out = np.empty(index.size)
+        mean = sweeps.gather_centred(self._convolve(multiplier, index, values).reshape(-1), index, out)
+        return out, mean
 
     def __call__(self, pressure: np.ndarray) -> np.ndarray:
         """Displacement [length] under ``pressure`` [pressure] (a new array)."""
@@ -143,9 +150,7 @@ class ComplexCompliance:
         (a field on the set to a new one)."""
 
         def preconditioner(v):
-            w = self._convolve(self.inverse, index, v).reshape(-1)[index]
-            w -= w.mean()
-            return w
+            return self._on_set(self.inverse, index, v)[0]
 
         return preconditioner
 
@@ -164,68 +169,66 @@ class ComplexCompliance:
         relative = 0.0 if moved <= SETTLED * n_a else self.relative
 
         def operator(v):  # centred on the set; the mean is the approach's share
-            w = self._convolve(self.forward, index, v).reshape(-1)[index]
-            mean = w.mean()
-            w -= mean
-            return w, mean
+            return self._on_set(self.forward, index, v)
 
         preconditioner = self.preconditioner_for(index)
         heights = hp[index]
         b = heights - heights.mean()
         if self.cap is not None:
             max_iter = min(max_iter, self.cap)
-        p, used, mean = gmres(operator, preconditioner, b, p, tol * np.sqrt(n_a), max_iter, relative=relative)
+        if self._workspace.size < (2 * RESTART + 1) * n_a:
+            self._workspace = np.empty((2 * RESTART + 1) * n_a)
+        p, used, mean = gmres(operator, preconditioner, b, p, tol * np.sqrt(n_a), max_iter, relative=relative,
+                              workspace=self._workspace)
         return p, float(mean - heights.mean()), used
 
 
 def gmres(operator, preconditioner, b: np.ndarray, x: np.ndarray, tol: float, max_iter: int,
-          restart: int = RESTART, relative: float = 0.0) -> tuple[np.ndarray, int, float]:
+          restart: int = RESTART, relative: float = 0.0, workspace: np.ndarray | None = None
+          ) -> tuple[np.ndarray, int, float]:
     """``(x, operator applications, side)``: right-preconditioned restarted GMRES (modified Gram-Schmidt, Givens
     rotations) for ``A x = b`` from ``x`` (updated in place), until ``|b - A x|_2 <= max(tol, relative |b - A x0|)``
     or ``max_iter`` applications. ``operator(v) -> (A v, s(v))`` with ``s`` a linear functional evaluated on the
     way (here the mean that centring removes): ``side`` is ``s(x)``, by linearity, without another application.
     ``preconditioner`` maps a 1-D field to a new one. The residual is GMRES's own estimate (exact in exact
-    arithmetic); a restart starts from the true residual."""
+    arithmetic); a restart starts from the true residual. The sweeps over the fields are compiled
+    (:mod:`._krylov_sweeps`): on small sets numpy's per-call overhead cost as much as the transforms.
+    ``workspace``: a flat buffer of at least ``(2 restart + 1) b.size`` values for the Krylov basis and its
+    preconditioned directions, kept by the caller across solves (fresh pages cost more to write than the sweeps
+    that fill them)."""
     r, side = operator(x)
     r = b - r
     it = 1
     beta = np.sqrt(dot(r, r))
     tol = max(tol, relative * beta)
+    column = np.empty(restart + 1)
     while beta > tol and it < max_iter:
         m = min(restart, max_iter - it)
-        basis = np.empty((m + 1, r.size))
-        directions = np.empty((m, r.size))
+        if workspace is None or workspace.size < (2 * m + 1) * r.size:
+            workspace = np.empty((2 * m + 1) * r.size)
+        basis = workspace[:(m + 1) * r.size].reshape(m + 1, r.size)
+        directions = workspace[(m + 1) * r.size:(2 * m + 1) * r.size].reshape(m, r.size)
         sides = np.empty(m)
         H = np.zeros((m + 1, m))
         rotations = np.zeros((m, 2))
         g = np.zeros(m + 1)
         g[0] = beta
-        basis[0] = r / beta
+        sweeps.scale_into(basis[0], r, 1.0 / beta)
         k = 0
         for k in range(m):
             directions[k] = preconditioner(basis[k])
             w, sides[k] = operator(directions[k])
             it += 1
-            for j in range(k + 1):
-                H[j, k] = dot(w, basis[j])
-                w -= H[j, k] * basis[j]
-            H[k + 1, k] = np.sqrt(dot(w, w))
-            if H[k + 1, k] > 0:
-                basis[k + 1] = w / H[k + 1, k]
-            for j in range(k):  # the rotations so far, on the new column
-                c, s = rotations[j]
-                H[j, k], H[j + 1, k] = c * H[j, k] + s * H[j + 1, k], -s * H[j, k] + c * H[j + 1, k]
-            d = np.hypot(H[k, k], H[k + 1, k])
-            c, s = (H[k, k] / d, H[k + 1, k] / d) if d > 0 else (1.0, 0.0)
-            rotations[k] = c, s
-            H[k, k], H[k + 1, k] = d, 0.0
-            g[k + 1], g[k] = -s * g[k], c * g[k]
-            if abs(g[k + 1]) <= tol or H[k, k] == 0:
+            norm = sweeps.orthogonalise(basis, k, w, column)
+            H[:k + 1, k] = column[:k + 1]
+            H[k + 1, k] = norm
+            if norm > 0:
+                sweeps.scale_into(basis[k + 1], w, 1.0 / norm)
+            if sweeps.rotate(H, rotations, g, k) <= tol or H[k, k] == 0:
                 break
         size = k + 1
         y = _upper_solve(H[:size, :size], g[:size])
-        for j in range(size):
-            x += y[j] * directions[j]
+        sweeps.combine(x, directions, y, size)
         side += float(y @ sides[:size])
         beta = abs(g[size])
         if H[k, k] == 0:  # the Krylov space is exhausted (happy breakdown or a singular system)
