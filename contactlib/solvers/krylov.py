@@ -24,6 +24,7 @@ from __future__ import annotations
 import numpy as np
 
 from .. import fft
+from .recycle import current_space
 from .state import dot
 
 RESTART = 30
@@ -121,6 +122,7 @@ class ComplexCompliance:
         self.inverse = inverse / count
         self._plan = fft.get_fft(self.shape, slot="krylov")
         self._last = np.zeros(int(count), dtype=bool)  # the last call's contact set
+        self.space = current_space()  # Krylov vectors carried across solves (:func:`.recycle.recycling`), or None
 
     def _convolve(self, multiplier: np.ndarray, index: np.ndarray | None, values: np.ndarray) -> np.ndarray:
         """``M values`` of a field that is ``values`` on ``index`` (None: everywhere) and 0 elsewhere."""
@@ -150,7 +152,7 @@ class ComplexCompliance:
         return preconditioner
 
     def solve_on_set(self, hp: np.ndarray, index: np.ndarray, start: np.ndarray, total: float, tol: float,
-                     max_iter: int) -> tuple[np.ndarray, float, int]:
+                     max_iter: int, image: np.ndarray | None = None) -> tuple[np.ndarray, float, int]:
         """``(p on the set, approach, iterations)``: GMRES for ``M_AA p = hp_A + approach``, ``sum p = total``,
         from ``start`` (moved to the load), until the rms of the centred gap on the set is at most ``tol``
         [length] (or :data:`FORCING` times its initial value while the set still moves, :data:`SETTLED`). ``hp`` [length] is the flat height field measured down from its top (``<= 0``)."""
@@ -174,8 +176,27 @@ class ComplexCompliance:
         b = heights - heights.mean()
         if self.cap is not None:
             max_iter = min(max_iter, self.cap)
+        if image is not None:
+            operator = _known_first(operator, image)
+        if self.space is not None:
+            operator, preconditioner = self.space.wrap(index, self._last.size, operator, preconditioner)
         p, used, mean = gmres(operator, preconditioner, b, p, tol * np.sqrt(n_a), max_iter, relative=relative)
-        return p, float(mean - heights.mean()), used
+        return p, float(mean - heights.mean()), used - (image is not None)
+
+
+def _known_first(operator, image: np.ndarray):
+    """``operator`` whose first call returns the centred ``image`` (the operator's value there, already known)
+    and its mean instead of applying it: the set solve's start when the Newton loop has just computed it."""
+    calls = []
+
+    def first_known(v):
+        if calls:
+            return operator(v)
+        calls.append(True)
+        mean = float(image.mean())
+        return image - mean, mean
+
+    return first_known
 
 
 def gmres(operator, preconditioner, b: np.ndarray, x: np.ndarray, tol: float, max_iter: int,
