@@ -81,3 +81,5 @@ def test_recycled_speeds_equal_cold_solves():
         assert float(warm.friction_coefficient_interlocking) == pytest.approx(
             float(cold.friction_coefficient_interlocking), rel=1e-6)
     assert sum(int(o.iterations) for o in path) < sum(int(o.iterations) for o in plain)
+    again = contactlib.solve_speeds(h, velocities, material=SLS, mean_pressure=0.02, tol=1e-8, recycle=True)
+    assert [int(o.iterations) for o in again] == [int(o.iterations) for o in path]  # the same carried space

@@ -14,11 +14,14 @@ from eigenvectors). It costs no operator application; the pairs of an earlier sp
 different contact set, are stale, so ``A P Q`` is only close to the identity there, but any fixed ``Q`` leaves
 GMRES exact (the answer and its stopping test do not change, only the iterations).
 
-Measured on a 256^2 rough surface, 30 speeds zeta = V tau q0 1e-3..1e3 (E_inf/E0 = 10, 10 % contact, tol
-1e-8): 938 -> 801 GMRES iterations in all from the last speed's answer, 884 -> 783 from the secant
-prediction; 13-14 -> 3 iterations per speed at the high-speed end, where the set and the operator settle.
-Where the set moves by more than :data:`MOVED` of its points the pairs mislead (503 iterations on one speed
-of the transition when kept): they are dropped there.
+Measured over 30 speeds zeta = V tau q0 1e-3..1e3 (E_inf/E0 = 10, 10 % contact, tol 1e-8, from
+:func:`contactlib.predict_pressure`): 816 -> 738 GMRES iterations in all on 256^2, 1118 -> 1014 on 512^2; 13-14
+-> 3 iterations per speed at the high-speed end, where the set and the operator settle, nothing in the
+transition, where the set moves at every update. The time is not lower at 512^2 (CPU 10.2 s both ways in one
+run, load 4.5): building ``Z`` (``SIZE^2 / 2`` inner products on the set at each solve) and applying ``Q``
+(``2 SIZE`` per iteration) cost what the saved iterations did, so :func:`contactlib.solve_speeds` carries the
+vectors only on request. Where the set moves by more than :data:`MOVED` of its points the pairs mislead (503
+iterations on one speed of the transition when kept): they are dropped there.
 """
 
 from __future__ import annotations
@@ -31,11 +34,13 @@ import numpy as np
 from .state import dot
 
 SIZE = 30
-"""Pairs kept (the latest; 10 gave 853 iterations instead of 801 in the sweep above, 60 gave 802)."""
+"""Pairs kept (the latest). On the 256^2 sweep walked from the last answer: 10 gave 853 iterations, 30 gave 801, 60
+gave 802 (938 without); on 512^2 from the prediction, 10 and 16 gave 1062 and 1041 (1014 at 30, 1118 without), at
+the same CPU time within the noise."""
 
 MOVED = 0.01
-"""A set that differs from the kept pairs' set by more than this fraction of its points drops them (0.002:
-815 iterations, 0.05: 831, in the sweep above)."""
+"""A set that differs from the kept pairs' set by more than this fraction of its points drops them (256^2 sweep
+from the last answer: 0.002 gave 815 iterations, 0.01 801, 0.05 831; keeping them at any move, 1449)."""
 
 _SPACE: contextvars.ContextVar = contextvars.ContextVar("krylov_space", default=None)
 
