@@ -155,7 +155,9 @@ class ComplexCompliance:
                      max_iter: int, image: np.ndarray | None = None) -> tuple[np.ndarray, float, int]:
         """``(p on the set, approach, iterations)``: GMRES for ``M_AA p = hp_A + approach``, ``sum p = total``,
         from ``start`` (moved to the load), until the rms of the centred gap on the set is at most ``tol``
-        [length] (or :data:`FORCING` times its initial value while the set still moves, :data:`SETTLED`). ``hp`` [length] is the flat height field measured down from its top (``<= 0``)."""
+        [length] (or :data:`FORCING` times its initial value while the set still moves, :data:`SETTLED`). ``hp`` [length] is the flat height field measured down from its top (``<= 0``).
+        ``image`` [length], when given: ``M start`` on the set, already known (a held set, whose ``start`` carries the
+        load: the Newton loop's last convolution), which saves the first application (not counted)."""
         n_a = index.size
         start = np.where(np.isfinite(start), start, 0.0)
         p = start + (total - start.sum()) / n_a
