@@ -9,8 +9,10 @@ number to ``--json``:
    each at the mean pressure that gives ``--contact`` (10 % and 50 %) elastically. Interleaved repeats,
    medians; iterations and outer iterations reported.
 2. **sweep**: ``--sweep-speeds`` speeds log-spaced over ``zeta`` 1e-3..1e3, walked upwards (``--walks``): each
-   solve warm-started from the last, from :func:`contactlib.solve_speeds`' prediction (the secant through the
-   last two answers in log speed), and each cold (as the ``friction_speed`` study does), over one elastic solve.
+   solve warm-started from the last (``warm``), from :func:`contactlib.solve_speeds`' prediction without
+   (``path``) and with (``recycle``) the GMRES vectors carried across solves (:mod:`contactlib.solvers.recycle`),
+   and each cold (as the ``friction_speed`` study does), over one elastic solve; GMRES iterations and
+   contact-set updates in all.
 
 Run ``python benchmarks/bench_viscoelastic.py --help``.
 """
@@ -71,9 +73,10 @@ def main(argv=None) -> int:
     ap.add_argument("--sweep-speeds", type=int, default=30)
     ap.add_argument("--sweep-size", type=int, default=512)
     ap.add_argument("--tol", type=float, default=1e-8)
-    ap.add_argument("--walks", nargs="+", default=["warm", "path", "cold"], choices=["warm", "path", "cold"],
+    ap.add_argument("--walks", nargs="+", default=["warm", "path", "recycle", "cold"],
+                    choices=["warm", "path", "recycle", "cold"],
                     help="sweep walks: from the last speed's pressure, from contactlib.solve_speeds' prediction "
-                         "(the secant in log speed), from scratch")
+                         "(without, with the carried Krylov vectors), from scratch")
     ap.add_argument("--json", type=Path)
     args = ap.parse_args(argv)
     material = contactlib.Viscoelastic.standard_linear_solid(E0=1.0, E_inf=args.ratio, tau=1.0, nu=0.5)
@@ -116,26 +119,43 @@ def main(argv=None) -> int:
     h = surface(args.sweep_size)
     p = load_for(h, 0.1)
     zetas = np.logspace(-3, 3, args.sweep_speeds)
-    t_el, _ = timed(lambda: contactlib.solve(h, E=1.0, nu=0.5, mean_pressure=p, tol=args.tol), args.repeats)
-    walks = {}
+    elastic_times, elastic_cpu = [], []
+
+    def time_elastic():  # before and after every walk: the machine's load moves during a sweep
+        for _ in range(args.repeats):
+            c0 = time.process_time()
+            elastic_times.append(timed(lambda: contactlib.solve(h, E=1.0, nu=0.5, mean_pressure=p, tol=args.tol), 1)[0])
+            elastic_cpu.append(time.process_time() - c0)
+
+    time_elastic()
+    walks, cpu = {}, {}
     velocities = [(zeta / (2 * np.pi), 0.0) for zeta in zetas]
     for walk in args.walks:  # warm: from the last speed's pressure; path: predicted; cold: each from scratch
-        t0, warm, iterations = time.perf_counter(), None, 0
-        if walk == "path":
-            iterations = sum(int(out.iterations) for out in contactlib.solve_speeds(
-                h, velocities, material=material, mean_pressure=p, tol=args.tol))
-        for velocity in velocities if walk != "path" else ():
+        t0, c0, warm, outs = time.perf_counter(), time.process_time(), None, []
+        if walk in ("path", "recycle"):
+            outs = contactlib.solve_speeds(h, velocities, material=material, mean_pressure=p, tol=args.tol,
+                                           recycle=walk == "recycle")
+        for velocity in velocities if walk not in ("path", "recycle") else ():
             out = contactlib.solve(h, material=material, mean_pressure=p, sliding_velocity=velocity,
                                    tol=args.tol, initial_pressure=warm)
             warm = out.pressure.values if walk == "warm" else None
-            iterations += int(out.iterations)
-        walks[walk] = (time.perf_counter() - t0, iterations)
-    sweep = {"n": args.sweep_size, "speeds": args.sweep_speeds, "elastic_s": t_el,
-             **{f"{w}_s": t for w, (t, _) in walks.items()}, **{f"{w}_iterations": i for w, (_, i) in walks.items()},
-             **{f"{w}_ratio": t / t_el for w, (t, _) in walks.items()}}
-    for walk, (t, its) in walks.items():
+            outs.append(out)
+        walks[walk] = (time.perf_counter() - t0, sum(int(out.iterations) for out in outs),
+                       sum(int(out.get("outer_iterations", 0)) for out in outs))
+        cpu[walk] = time.process_time() - c0
+        time_elastic()
+    t_el, c_el = statistics.median(elastic_times), statistics.median(elastic_cpu)
+    sweep = {"n": args.sweep_size, "speeds": args.sweep_speeds, "elastic_s": t_el, "load": os.getloadavg(),
+             "elastic_times": elastic_times, "elastic_cpu_s": c_el, **{f"{w}_cpu_s": c for w, c in cpu.items()},
+             **{f"{w}_s": t for w, (t, _, _) in walks.items()},
+             **{f"{w}_iterations": i for w, (_, i, _) in walks.items()},
+             **{f"{w}_set_updates": u for w, (_, _, u) in walks.items()},
+             **{f"{w}_ratio": t / t_el for w, (t, _, _) in walks.items()}}
+    for walk, (t, its, updates) in walks.items():
         print(f"\n# speed sweep ({walk}): {args.sweep_speeds} speeds, zeta 1e-3..1e3, {args.sweep_size}^2 at 10 % "
-              f"contact: {t:.2f} s = {t / t_el:.1f}x one elastic solve ({t_el:.3f} s), {its} iterations")
+              f"contact: {t:.2f} s = {t / t_el:.1f}x one elastic solve ({t_el:.3f} s), {its} iterations, "
+              f"{updates} set updates; CPU time {cpu[walk]:.2f} s = {cpu[walk] / c_el:.1f}x ({c_el:.3f} s) "
+              f"(load {os.getloadavg()[0]:.1f})")
     if args.json:
         args.json.write_text(json.dumps({"host": info, "steady": rows, "sweep": sweep}, indent=1))
     return 0

@@ -19,6 +19,21 @@ def test_prediction_is_the_secant_in_log_speed_clipped_at_zero():
         contactlib.predict_pressure([1.0, 10.0], [a, b], 0.0)
 
 
+def test_prediction_from_three_speeds_extrapolates_geometric_changes():
+    """Answers whose changes shrink (or grow) by a constant ratio per step in log speed are predicted exactly,
+    one step or two ahead; unequal spacing falls back to the secant."""
+    limit, change = np.array([1.0, 0.5, 2.0]), np.array([0.4, -0.05, 0.1])
+    for ratio in (0.62, 1.5):
+        speeds = [1.0, 10.0, 100.0]
+        pressures = [limit + change * ratio**k for k in range(3)]
+        for ahead in (1, 2):
+            expected = limit + change * ratio ** (2 + ahead)
+            assert np.allclose(contactlib.predict_pressure(speeds, pressures, 100.0 * 10**ahead), expected)
+    pressures = [limit + change * 0.5**k for k in range(3)]
+    secant = pressures[2] + (pressures[2] - pressures[1])
+    assert np.allclose(contactlib.predict_pressure([1.0, 3.0, 100.0], pressures, 100.0 * 100 / 3), secant)
+
+
 def test_path_answers_equal_cold_solves():
     h = contactlib.surfaces.self_affine(64, hurst=0.8, q_roll=2, q_cutoff=8, rms_slope=0.1, seed=3)
     velocities = [(zeta / (2 * np.pi), 0.0) for zeta in np.logspace(-2, 1, 5)]

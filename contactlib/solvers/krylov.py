@@ -25,6 +25,7 @@ import numpy as np
 
 from .. import fft
 from . import _krylov_sweeps as sweeps
+from .recycle import current_space
 from .state import dot
 
 RESTART = 30
@@ -123,6 +124,7 @@ class ComplexCompliance:
         self._plan = fft.get_fft(self.shape, slot="krylov")
         self._last = np.zeros(int(count), dtype=bool)  # the last call's contact set
         self._workspace = np.empty(0)  # GMRES's basis and directions, grown to the largest set so far
+        self.space = current_space()  # Krylov vectors carried across solves (:func:`.recycle.recycling`), or None
 
     def _convolve(self, multiplier: np.ndarray, index: np.ndarray | None, values: np.ndarray) -> np.ndarray:
         """``M values`` of a field that is ``values`` on ``index`` (None: everywhere) and 0 elsewhere."""
@@ -155,10 +157,12 @@ class ComplexCompliance:
         return preconditioner
 
     def solve_on_set(self, hp: np.ndarray, index: np.ndarray, start: np.ndarray, total: float, tol: float,
-                     max_iter: int) -> tuple[np.ndarray, float, int]:
+                     max_iter: int, image: np.ndarray | None = None) -> tuple[np.ndarray, float, int]:
         """``(p on the set, approach, iterations)``: GMRES for ``M_AA p = hp_A + approach``, ``sum p = total``,
         from ``start`` (moved to the load), until the rms of the centred gap on the set is at most ``tol``
-        [length] (or :data:`FORCING` times its initial value while the set still moves, :data:`SETTLED`). ``hp`` [length] is the flat height field measured down from its top (``<= 0``)."""
+        [length] (or :data:`FORCING` times its initial value while the set still moves, :data:`SETTLED`). ``hp`` [length] is the flat height field measured down from its top (``<= 0``).
+        ``image`` [length], when given: ``M start`` on the set, already known (a held set, whose ``start`` carries the
+        load: the Newton loop's last convolution), which saves the first application (not counted)."""
         n_a = index.size
         start = np.where(np.isfinite(start), start, 0.0)
         p = start + (total - start.sum()) / n_a
@@ -176,11 +180,30 @@ class ComplexCompliance:
         b = heights - heights.mean()
         if self.cap is not None:
             max_iter = min(max_iter, self.cap)
+        if image is not None:
+            operator = _known_first(operator, image)
+        if self.space is not None:
+            operator, preconditioner = self.space.wrap(index, self._last.size, operator, preconditioner)
         if self._workspace.size < (2 * RESTART + 1) * n_a:
             self._workspace = np.empty((2 * RESTART + 1) * n_a)
         p, used, mean = gmres(operator, preconditioner, b, p, tol * np.sqrt(n_a), max_iter, relative=relative,
                               workspace=self._workspace)
-        return p, float(mean - heights.mean()), used
+        return p, float(mean - heights.mean()), used - (image is not None)
+
+
+def _known_first(operator, image: np.ndarray):
+    """``operator`` whose first call returns the centred ``image`` (the operator's value there, already known)
+    and its mean instead of applying it: the set solve's start when the Newton loop has just computed it."""
+    calls = []
+
+    def first_known(v):
+        if calls:
+            return operator(v)
+        calls.append(True)
+        mean = float(image.mean())
+        return image - mean, mean
+
+    return first_known
 
 
 def gmres(operator, preconditioner, b: np.ndarray, x: np.ndarray, tol: float, max_iter: int,
