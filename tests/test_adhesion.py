@@ -166,6 +166,44 @@ def test_jkr_sphere_cohesive_route_and_its_limit():
     assert ref.jkr_limit(P1.min(), lams[0], P2.min(), lams[1]) == pytest.approx(-scale, rel=0.01)
 
 
+def test_jkr_extrapolation_on_maugis_closed_form():
+    """The lambda -> infinity limit checked on Maugis' own equations before it is trusted on solver output:
+    the departure from JKR is a series in 1 / lambda^2 (it falls 4x per doubling of lambda), and the
+    Richardson extrapolation removes its terms one by one. Over the branch stable under load control, from
+    a_c to 2.5 a_c: two points (2, 2.5) are off by more than 3 % of |P_c| past 1.5 a_c; three (2, 2.5, 3)
+    are within 3 % to 2 a_c (2.2 %); four (1.5, 2, 2.5, 3) to 2.5 a_c (2.8 %). Also the inverse of JKR's
+    load, and the radius of a disc of grid points about an apex."""
+    A_c = 1.5 ** (1 / 3)  # a_c in Maugis' units
+    A = A_c * np.linspace(1.0, 2.5, 31)
+    jkr = A**3 - np.sqrt(6 * A**3)
+    P = {lam: ref.maugis_load_penetration(A, lam)[0] for lam in (1.5, 2.0, 2.5, 3.0, 10.0, 20.0, 40.0)}
+    for lam in (10.0, 20.0):
+        e_1, e_2 = P[lam] - jkr, P[2 * lam] - jkr  # e_1 = 4 e_2 for a 1 / lambda^2 term alone
+        assert np.abs(e_1 - 4 * e_2).max() < 0.05 * np.abs(e_1).max()
+    error = {lams: np.abs(ref.jkr_extrapolation([P[lam] for lam in lams], lams) - jkr) / 1.5
+             for lams in ((2.0, 2.5), (2.0, 2.5, 3.0), (1.5, 2.0, 2.5, 3.0))}
+    assert error[(2.0, 2.5)][A < 1.4 * A_c].max() < 0.03 < error[(2.0, 2.5)][A > 1.5 * A_c].max()
+    assert error[(2.0, 2.5, 3.0)][A <= 2.0 * A_c].max() < 0.025 < error[(2.0, 2.5, 3.0)].max()
+    assert error[(1.5, 2.0, 2.5, 3.0)].max() < 0.03
+    assert ref.jkr_limit(P[2.0], 2.0, P[2.5], 2.5) == pytest.approx(ref.jkr_extrapolation([P[2.0], P[2.5]],
+                                                                                         (2.0, 2.5)))
+    assert ref.jkr_weights((1.5, 2.0, 2.5, 3.0)).sum() == pytest.approx(1.0, rel=1e-12)
+    with pytest.raises(ValueError, match="lams"):
+        ref.jkr_weights((2.0, 2.0))
+    # JKR's radius at a load, on the branch a >= a_c, and none below pull-off
+    R, w = 1.0, 2.83e-4
+    a_c = ref.jkr_pull_off_radius(radius=R, E_star=1.0, work=w)
+    a = a_c * np.array([1.05, 1.59, 2.5])
+    assert ref.jkr_contact_radius(ref.jkr_load(a, radius=R, E_star=1.0, work=w), radius=R, E_star=1.0,
+                                  work=w) == pytest.approx(a, rel=1e-10)
+    with pytest.raises(ValueError, match="load"):
+        ref.jkr_contact_radius(1.01 * ref.jkr_pull_off(radius=R, work=w), radius=R, E_star=1.0, work=w)
+    # the 13 grid points nearest the apex (a grid point) of an 8 x 8 grid: the disc of radius 2 (spacing 1) and its shell
+    h = contactlib.surfaces.paraboloid(8, length=8.0, radius=R)
+    assert ref.apex_disc_radius(h.values, 13, radius=R) == pytest.approx(0.5 * (2 + math.sqrt(5)))
+    assert ref.apex_disc_radius(h.values, 1, radius=R) == pytest.approx(0.5)
+
+
 def test_maugis_dugdale_sphere_lambda_one():
     """Non-periodic sphere at lambda = 1: load against approach within 3 % of Maugis' equations."""
     R, w, L, n = 1.0, 2.83e-4, 0.45, 128
