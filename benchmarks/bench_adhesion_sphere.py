@@ -13,13 +13,16 @@ closed points about the apex (:func:`contactlib.reference.adhesive.apex_disc_rad
 ``sqrt(area / pi)``, whose lattice scatter is 0.6 % of ``|P_c|`` in the load at 2.4 a_c.
 
 For each state: load against radius, error against JKR's closed form and (Maugis law) against Maugis' at
-that lambda, over ``|P_c| = 3/2 pi w R``. Then, for each set of two or more lambdas, the load curves (cubic
+that lambda, over ``|P_c| = 3/2 pi w R``. The extrapolation is taken at a fixed ``a + 2/3 (c - a)``
+(``--radius equivalent``, :func:`contactlib.reference.adhesive.jkr_equivalent_radius`; ``c`` the radius of
+the disc of interacting points), where the terms of Maugis' series left after it are far smaller than at a
+fixed contact radius ``a`` (``--radius contact``). Then, for each set of two or more lambdas, the load curves (cubic
 splines in the radius) extrapolated to lambda -> infinity (:func:`contactlib.reference.adhesive.
 jkr_extrapolation`) against JKR, next to the same extrapolation of Maugis' closed form (the extrapolation's
 own error); and for all the lambdas a table by radius, with the radius error at each load beside the load
 error at each radius.
 
-    python benchmarks/bench_adhesion_sphere.py --lambdas 2 2.5 3 --n 256 --window 0.576
+    python benchmarks/bench_adhesion_sphere.py --lambdas 1.5 2 2.5 --n 256 --window 0.576
 """
 
 from __future__ import annotations
@@ -32,6 +35,7 @@ import warnings
 
 import numpy as np
 from scipy.interpolate import CubicSpline
+from scipy.optimize import brentq
 
 import contactlib
 from contactlib.reference import adhesive as ref
@@ -41,34 +45,41 @@ RADII = tuple(round(2.5 - 0.1 * k, 2) for k in range(17))  # JKR radii over a_c 
 
 
 def path(h, lam: float, model: str, approaches, warm, length: float, tol: float):
-    """The states along ``approaches``: (disc radii, pixel radii, loads, pressures)."""
+    """The states along ``approaches``: (disc radii, pixel radii, loads, pressures, zone radii)."""
     K = 4 * E_STAR / 3
     sigma0 = lam / 2 * (math.pi * W * K**2 / R) ** (1 / 3)
     law = contactlib.Adhesion(work=W, range=W / sigma0, model=model)
     a_c = ref.jkr_pull_off_radius(radius=R, E_star=E_STAR, work=W)
     scale = abs(ref.jkr_pull_off(radius=R, work=W))
     size = h.size
-    ds, disc, pixel, loads, states = None, [], [], [], []
+    ds, disc, pixel, loads, states, zone = None, [], [], [], [], []
     for k, d in enumerate(approaches):
         first = warm[k] if warm is not None else (None if ds is None else ds.pressure.values)
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
-            ds = contactlib.solve(h, E=1.0, nu=0.0, penetration=d, adhesion=law, periodic=False, tol=tol,
-                                  initial_pressure=first)
+            try:
+                ds = contactlib.solve(h, E=1.0, nu=0.0, penetration=d, adhesion=law, periodic=False, tol=tol,
+                                      initial_pressure=first)
+            except contactlib.ConvergenceError as error:  # said, and left out of the curve
+                print(f"  {model} lambda {lam:g} d {d:+.5f}: {error}", flush=True)
+                states.append(first)
+                continue
         count = int(round(float(ds.contact_area) * size))
         a = ref.apex_disc_radius(h.values, count, radius=R)
+        c = ref.apex_disc_radius(h.values, int(round(float(ds.interaction_area) * size)), radius=R)
         load = float(ds.mean_pressure) * length**2
         jkr = float(ref.jkr_load(a, radius=R, E_star=E_STAR, work=W))
         md = (float(ref.maugis_load(a, radius=R, E_star=E_STAR, work=W, peak_stress=sigma0)[0])
               if model == "maugis" else math.nan)
         disc.append(a)
+        zone.append(c)
         pixel.append(math.sqrt(float(ds.contact_area) * length**2 / math.pi))
         loads.append(load)
         states.append(ds.pressure.values)
         print(f"  {model} lambda {lam:g} d {d:+.5f}: a/a_c {a / a_c:.4f} (sqrt(area/pi) {pixel[-1] / a_c:.4f}) "
-              f"P/|P_c| {load / scale:+.4f} err JKR {(load - jkr) / scale:+.4f} err MD {(load - md) / scale:+.5f} "
+              f"c/a_c {c / a_c:.4f} P/|P_c| {load / scale:+.4f} err JKR {(load - jkr) / scale:+.4f} err MD {(load - md) / scale:+.5f} "
               f"zone {ds.attrs['process_zone_elements']:.1f} el {ds.attrs['solver']}", flush=True)
-    return np.array(disc), np.array(pixel), np.array(loads), states
+    return np.array(disc), np.array(pixel), np.array(loads), states, np.array(zone)
 
 
 def limit(curves, lams, radii):
@@ -77,12 +88,26 @@ def limit(curves, lams, radii):
     return ref.jkr_extrapolation(values, lams)
 
 
+def _own(A, lams, equivalent: bool):
+    """The extrapolation's own error over ``|P_c|`` at Maugis radii ``A``: Maugis' closed form at ``lams``
+    (at the same contact radius, or the same ``a + 2/3 (c - a)``), extrapolated, less JKR's."""
+    values = []
+    for lam in lams:
+        if equivalent:  # the contact radius whose a + 2/3 (c - a) is A
+            inner = [brentq(lambda x: float(ref.jkr_equivalent_radius(x, x * ref.maugis_zone_ratio(x, lam))) - t,
+                            0.3 * t, t) for t in A]
+            values.append(ref.maugis_load_penetration(np.array(inner), lam)[0])
+        else:
+            values.append(ref.maugis_load_penetration(A, lam)[0])
+    return (ref.jkr_extrapolation(values, lams) - A**3 + np.sqrt(6 * A**3)) / 1.5
+
+
 def _increasing(x, y):
     order = np.argsort(x)
     return x[order], y[order]
 
 
-def run(lams, n: int, length: float, model: str, radii_over, tol: float) -> None:
+def run(lams, n: int, length: float, model: str, radii_over, tol: float, equivalent: bool) -> None:
     K = 4 * E_STAR / 3
     h = contactlib.surfaces.paraboloid(n, length=length, radius=R)
     a_c = ref.jkr_pull_off_radius(radius=R, E_star=E_STAR, work=W)
@@ -91,8 +116,9 @@ def run(lams, n: int, length: float, model: str, radii_over, tol: float) -> None
     curves, warm = {}, None
     for lam in lams:
         start = time.perf_counter()
-        disc, pixel, loads, warm = path(h, lam, model, approaches, warm, length, tol)
-        curves[lam] = (disc, pixel, loads)
+        disc, pixel, loads, warm, zone = path(h, lam, model, approaches, warm, length, tol)
+        # the comparison radius: the contact radius itself, or a + 2/3 (c - a) (ref.jkr_equivalent_radius)
+        curves[lam] = (ref.jkr_equivalent_radius(disc, zone) if equivalent else disc, pixel, loads)
         print(f"{model} lambda {lam:g} n {n} L {length:g}: pull-off {loads.min() / scale:+.4f} |P_c| "
               f"(JKR -1, Maugis {ref.maugis_pull_off(lam) / 1.5:+.4f}), {time.perf_counter() - start:.0f} s",
               flush=True)
@@ -105,8 +131,7 @@ def run(lams, n: int, length: float, model: str, radii_over, tol: float) -> None
     for k in range(2, len(lams) + 1):
         for subset in itertools.combinations(lams, k):
             error = (limit(curves, subset, radii) - jkr) / scale
-            own = (ref.jkr_extrapolation([ref.maugis_load_penetration(radii * A_scale, lam)[0] for lam in subset],
-                                         subset) - (radii * A_scale) ** 3 + np.sqrt(6 * (radii * A_scale) ** 3)) / 1.5
+            own = _own(radii * A_scale, subset, equivalent)
             parts = []
             for b0, b1 in bands:
                 sel = (radii / a_c >= b0) & (radii / a_c < b1)
@@ -121,12 +146,12 @@ def run(lams, n: int, length: float, model: str, radii_over, tol: float) -> None
     rows = np.unique(np.concatenate([np.round(np.array(radii_over), 2), [1.0, 1.59]]))
     rows = rows[(rows * a_c >= lo) & (rows * a_c <= hi)]
     P = limit(curves, lams, rows * a_c)
-    own = (ref.jkr_extrapolation([ref.maugis_load_penetration(rows * a_c * A_scale, lam)[0] for lam in lams], lams)
-           - (rows * a_c * A_scale) ** 3 + np.sqrt(6 * (rows * a_c * A_scale) ** 3)) / 1.5
+    own = _own(rows * a_c * A_scale, lams, equivalent)
     jkr_rows = ref.jkr_load(rows * a_c, radius=R, E_star=E_STAR, work=W)
     # radius at each JKR load: splines of the radius in the load on the branch a >= a_c of each lambda
     branch = {lam: (curves[lam][2][curves[lam][0] >= a_c], curves[lam][0][curves[lam][0] >= a_c]) for lam in lams}
-    print(f"\nall lambdas {', '.join(f'{x:g}' for x in lams)}, n {n}, L {length:g}, tol {tol:g}")
+    print(f"\nall lambdas {', '.join(f'{x:g}' for x in lams)}, n {n}, L {length:g}, tol {tol:g}, radius "
+          + ("a + 2/3 (c - a)" if equivalent else "a"))
     print("a/a_c  P_JKR/|P_c|  (P_lim - P_JKR)/|P_c|  own  lambda=" + f"{lams[-1]:g}" + " alone  "
           "|  at P_JKR: (a_lim - a_JKR)/a_JKR")
     top = lams[-1]
@@ -143,15 +168,17 @@ def run(lams, n: int, length: float, model: str, radii_over, tol: float) -> None
 
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--lambdas", type=float, nargs="+", default=[2.0, 2.5, 3.0])
+    parser.add_argument("--lambdas", type=float, nargs="+", default=[1.5, 2.0, 2.5])
     parser.add_argument("--n", type=int, default=256)
     parser.add_argument("--window", type=float, default=0.576)
     parser.add_argument("--model", default="maugis", choices=["maugis", "exponential"])
     parser.add_argument("--radii", type=float, nargs="+", default=list(RADII),
                         help="JKR contact radii over a_c of the approaches of the path, unloading")
     parser.add_argument("--tol", type=float, default=1e-8)
+    parser.add_argument("--radius", default="equivalent", choices=["equivalent", "contact"],
+                        help="extrapolate at a fixed a + 2/3 (c - a) (default) or at a fixed contact radius a")
     args = parser.parse_args(argv)
-    run(args.lambdas, args.n, args.window, args.model, args.radii, args.tol)
+    run(args.lambdas, args.n, args.window, args.model, args.radii, args.tol, args.radius == "equivalent")
 
 
 if __name__ == "__main__":

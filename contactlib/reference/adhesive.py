@@ -136,6 +136,23 @@ def jkr_extrapolation(values, lams):
     return sum(c * np.asarray(v, dtype=float) for c, v in zip(weights, values))
 
 
+def jkr_equivalent_radius(contact_radius, zone_radius):
+    """The radius ``a + 2/3 (c - a)`` [length] at which a Maugis-Dugdale sphere of contact radius ``a`` and
+    cohesive-zone outer radius ``c`` is compared with JKR, for the extrapolation to ``lambda -> infinity``.
+
+    Why: at a fixed contact radius the load departs from JKR's by ``(1.5 A^2 - (13/12) (3/2)^(3/2) A^(1/2))
+    / lambda^2 + O(lambda^-4)`` (from the series of :func:`jkr_extrapolation`: ``t = t_0 - (A t_0^2 / 2 -
+    (5/24) t_0^3) / lambda^2``, ``t_0^2 = 3 / (2 A)``), and the zone is ``C - A = 3 / (4 lambda^2)`` long
+    (``m - 1 = s^2 / 2``). Moving the radius by ``kappa (C - A)`` moves JKR's load by ``kappa (3/4) (3 A^2 -
+    (3/2) sqrt(6 A)) / lambda^2``: ``kappa = 2/3`` cancels the ``A^2`` part of the ``1 / lambda^2`` term,
+    the part that grows into compression, and the remainder is small where the load is (``JKR' = 0`` at
+    ``a_c``, where no shift helps). Both radii tend to ``a``, so the limit is JKR's curve against the contact
+    radius; the terms left are smaller: Maugis' own loads extrapolated at a fixed ``a + 2/3 (c - a)`` from
+    lambda = 1.5, 2 and 2.5 are within 2.3 % of ``|P_c|`` of JKR's to 2.5 a_c (11.5 % at a fixed ``a``)."""
+    a = np.asarray(contact_radius, dtype=float)
+    return a + 2.0 / 3.0 * (np.asarray(zone_radius, dtype=float) - a)
+
+
 def jkr_contact_radius(load, *, radius: float, E_star: float, work: float):
     """JKR contact radius [length] at load ``P`` [force] on the branch stable under load control
     (``a >= a_c``, ``P >= -3/2 pi w R``): the root of ``4 E* a^3 / (3 R) - sqrt(8 pi w E* a^3) = P``,
