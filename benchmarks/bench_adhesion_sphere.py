@@ -77,7 +77,8 @@ def path(h, lam: float, model: str, approaches, warm, length: float, tol: float)
         loads.append(load)
         states.append(ds.pressure.values)
         print(f"  {model} lambda {lam:g} d {d:+.5f}: a/a_c {a / a_c:.4f} (sqrt(area/pi) {pixel[-1] / a_c:.4f}) "
-              f"c/a_c {c / a_c:.4f} P/|P_c| {load / scale:+.4f} err JKR {(load - jkr) / scale:+.4f} err MD {(load - md) / scale:+.5f} "
+              f"c/a_c {c / a_c:.4f} P/|P_c| {load / scale:+.4f} err JKR {(load - jkr) / scale:+.4f} "
+              f"err MD {(load - md) / scale:+.5f} "
               f"zone {ds.attrs['process_zone_elements']:.1f} el {ds.attrs['solver']}", flush=True)
     return np.array(disc), np.array(pixel), np.array(loads), states, np.array(zone)
 
@@ -163,7 +164,8 @@ def run(lams, n: int, length: float, model: str, radii_over, tol: float, equival
         if r >= 1.0 and max(lows) <= pj <= min(highs) and all(len(branch[lam][0]) > 3 for lam in lams):
             a_lim = ref.jkr_extrapolation([CubicSpline(*_increasing(*branch[lam]))(pj) for lam in lams], lams)
             radius_error = (a_lim - r * a_c) / (r * a_c)
-        print(f"{r:5.2f}  {pj / scale:+8.4f}  {(p - pj) / scale:+8.4f}  {o:+8.4f}  {alone:+8.4f}  |  {radius_error:+.5f}")
+        print(f"{r:5.2f}  {pj / scale:+8.4f}  {(p - pj) / scale:+8.4f}  {o:+8.4f}  {alone:+8.4f}  |  "
+              f"{radius_error:+.5f}")
 
 
 def main(argv=None):

@@ -213,7 +213,7 @@ def test_jkr_extrapolation_on_maugis_closed_form():
                                   work=w) == pytest.approx(a, rel=1e-10)
     with pytest.raises(ValueError, match="load"):
         ref.jkr_contact_radius(1.01 * ref.jkr_pull_off(radius=R, work=w), radius=R, E_star=1.0, work=w)
-    # the 13 grid points nearest the apex (a grid point) of an 8 x 8 grid: the disc of radius 2 (spacing 1) and its shell
+    # the 13 grid points nearest the apex (a grid point) of an 8 x 8 grid: the disc of radius 2 (spacing 1)
     h = contactlib.surfaces.paraboloid(8, length=8.0, radius=R)
     assert ref.apex_disc_radius(h.values, 13, radius=R) == pytest.approx(0.5 * (2 + math.sqrt(5)))
     assert ref.apex_disc_radius(h.values, 1, radius=R) == pytest.approx(0.5)
