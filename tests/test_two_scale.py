@@ -453,14 +453,27 @@ def test_contact_compliance_cg_matches_a_dense_solve():
 
 
 def test_default_macro_tolerance_is_far_below_the_model_error():
-    """The default ``macro_tol`` (1e-8) against a 1e-13 solve: forces within 1e-7 of the largest, where the
-    point-load model itself is 0.5-1 % off (``benchmarks/RESULTS.md``)."""
+    """The default ``macro_tol`` (1e-4) against a 1e-13 solve: forces within 1e-4 of the largest (3.4e-5
+    measured), where the point-load model itself is 0.5-1.1 % off (``benchmarks/RESULTS.md``)."""
     field = ts.random_asperity_field(300, coverage=0.4, nodes_per_spacing=8, seed=1)
     approach = float(field.max()) - 0.6 * float(np.mean(ts.asperity_table(field).summit_height))
     default = ts.solve(field, E=E, nu=NU, penetration=approach, scale="macro", fields=False)
     tight = ts.solve(field, E=E, nu=NU, penetration=approach, scale="macro", fields=False, macro_tol=1e-13)
-    assert default.attrs["macro_tol"] == 1e-8 and default.attrs["macro_residual"] <= 1e-8
-    assert np.max(np.abs(default.force.values - tight.force.values)) < 1e-7 * float(tight.force.max())
+    assert default.attrs["macro_tol"] == 1e-4 and default.attrs["macro_residual"] <= 1e-4
+    assert np.max(np.abs(default.force.values - tight.force.values)) < 1e-4 * float(tight.force.max())
+
+
+def test_two_scale_start_follows_the_outer_tolerance():
+    """The macro step that starts the sweeps runs at 1e-2 of the outer tolerance (at most 1e-4): the
+    sweeps' answer does not depend on it, so the forces match those from a 1e-12 start within a tenth of the
+    ``force_tol`` of the solve, and a tight ``tol`` keeps the tight start."""
+    field = ts.random_asperity_field(300, coverage=0.2, nodes_per_spacing=24, seed=0)
+    approach = float(field.max()) - 0.6 * float(np.mean(ts.asperity_table(field).summit_height))
+    loose = ts.solve(field, E=E, nu=NU, penetration=approach, force_tol=1e-2)
+    tight = ts.solve(field, E=E, nu=NU, penetration=approach, force_tol=1e-2, macro_tol=1e-12)
+    assert loose.attrs["macro_tol"] == 1e-4 and tight.attrs["macro_tol"] == 1e-12
+    assert np.max(np.abs(loose.force.values - tight.force.values)) < 1e-3 * float(tight.force.max())  # 1.6e-5 measured
+    assert ts.solve(field, E=E, nu=NU, penetration=approach, tol=1e-6, fields=False).attrs["macro_tol"] == 1e-8
 
 
 def test_single_precision_window_products_agree_with_double(monkeypatch):
