@@ -429,6 +429,30 @@ def test_coarse_ewald_mesh_matches_the_fine_one(monkeypatch):
     np.testing.assert_allclose(coarse.diagonal, fine.diagonal, rtol=1e-9)
 
 
+def test_separable_spreading_matches_the_sparse_matrix():
+    """The Ewald product's spreading and gathering by the separable Gaussian kernels against the sparse
+    gathering matrix (and its transpose) built independently from the same Gaussians, on a mesh where the
+    supports wrap around the periodic window: the mesh fields and the gathered values agree to 1e-13."""
+    from contactlib.two_scale.interaction import _gather, _gaussian_factors, _gaussian_gather, _spread
+
+    rng = np.random.default_rng(7)
+    centers = rng.uniform(0.0, 1.0, (300, 2))
+    centers[:3] = [[0.0, 0.0], [0.999, 0.5], [0.01, 0.995]]  # supports across the window's edges
+    m, s = 64, 0.02
+    rows, cols, gx, gy = _gaussian_factors(centers, 1.0, m, s)
+    matrix = _gaussian_gather(centers, 1.0, m, s)
+    forces = rng.uniform(-1.0, 1.0, 300)
+    mesh = np.zeros((m, m))
+    _spread(rows, cols, gx, gy, forces, mesh)
+    expected = (matrix.T @ forces).reshape(m, m)
+    assert np.max(np.abs(mesh - expected)) < 1e-13 * np.max(np.abs(expected))
+    field = rng.standard_normal((m, m))
+    out = np.empty(300)
+    _gather(rows, cols, gx, gy, field, out)
+    gathered = matrix @ field.ravel()
+    assert np.max(np.abs(out - gathered)) < 1e-13 * np.max(np.abs(gathered))
+
+
 def test_contact_compliance_cg_matches_a_dense_solve():
     """The macro step's own preconditioned CG: ``(D_A^-1 + T_AA) y_A = b_A`` against a dense solve of the
     matrix assembled column by column from the Ewald operator, some asperities out of contact; the
@@ -453,14 +477,27 @@ def test_contact_compliance_cg_matches_a_dense_solve():
 
 
 def test_default_macro_tolerance_is_far_below_the_model_error():
-    """The default ``macro_tol`` (1e-8) against a 1e-13 solve: forces within 1e-7 of the largest, where the
-    point-load model itself is 0.5-1 % off (``benchmarks/RESULTS.md``)."""
+    """The default ``macro_tol`` (1e-4) against a 1e-13 solve: forces within 1e-4 of the largest (3.4e-5
+    measured), where the point-load model itself is 0.5-1.1 % off (``benchmarks/RESULTS.md``)."""
     field = ts.random_asperity_field(300, coverage=0.4, nodes_per_spacing=8, seed=1)
     approach = float(field.max()) - 0.6 * float(np.mean(ts.asperity_table(field).summit_height))
     default = ts.solve(field, E=E, nu=NU, penetration=approach, scale="macro", fields=False)
     tight = ts.solve(field, E=E, nu=NU, penetration=approach, scale="macro", fields=False, macro_tol=1e-13)
-    assert default.attrs["macro_tol"] == 1e-8 and default.attrs["macro_residual"] <= 1e-8
-    assert np.max(np.abs(default.force.values - tight.force.values)) < 1e-7 * float(tight.force.max())
+    assert default.attrs["macro_tol"] == 1e-4 and default.attrs["macro_residual"] <= 1e-4
+    assert np.max(np.abs(default.force.values - tight.force.values)) < 1e-4 * float(tight.force.max())
+
+
+def test_two_scale_start_follows_the_outer_tolerance():
+    """The macro step that starts the sweeps runs at 1e-2 of the outer tolerance (at most 1e-4): the
+    sweeps' answer does not depend on it, so the forces match those from a 1e-12 start within a tenth of the
+    ``force_tol`` of the solve, and a tight ``tol`` keeps the tight start."""
+    field = ts.random_asperity_field(300, coverage=0.2, nodes_per_spacing=24, seed=0)
+    approach = float(field.max()) - 0.6 * float(np.mean(ts.asperity_table(field).summit_height))
+    loose = ts.solve(field, E=E, nu=NU, penetration=approach, force_tol=1e-2)
+    tight = ts.solve(field, E=E, nu=NU, penetration=approach, force_tol=1e-2, macro_tol=1e-12)
+    assert loose.attrs["macro_tol"] == 1e-4 and tight.attrs["macro_tol"] == 1e-12
+    assert np.max(np.abs(loose.force.values - tight.force.values)) < 1e-3 * float(tight.force.max())  # 1.6e-5 measured
+    assert ts.solve(field, E=E, nu=NU, penetration=approach, tol=1e-6, fields=False).attrs["macro_tol"] == 1e-8
 
 
 def test_single_precision_window_products_agree_with_double(monkeypatch):
