@@ -22,24 +22,13 @@ import sys
 import time
 from pathlib import Path
 
-import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
+from _timing import timed  # noqa: E402
 import contactlib  # noqa: E402
 from tamaas_adhesion import solve_tamaas  # noqa: E402
 
 WORK, RANGE, LOAD = 1e-5, 1e-3, 0.01
-
-
-def timed(fn, repeats, warm=True):
-    if warm:
-        fn()  # warm-up: numba, FFT plans, tamaas' own
-    times, out = [], None
-    for _ in range(repeats):
-        start = time.perf_counter()
-        out = fn()
-        times.append(time.perf_counter() - start)
-    return statistics.median(times), out
 
 
 def main(argv=None):

@@ -20,7 +20,6 @@ for _var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
 import argparse
 import json
 import sys
-import time
 from pathlib import Path
 
 import numpy as np
@@ -30,15 +29,8 @@ from contactlib.grid import Grid
 from contactlib.operators import Compliance
 from contactlib.solvers import solve_periodic_displacement, solve_polonsky_keer
 
-
-def timed(fn, repeats):
-    fn()
-    times, out = [], None
-    for _ in range(repeats):
-        t0 = time.perf_counter()
-        out = fn()
-        times.append(time.perf_counter() - t0)
-    return float(np.median(times)), out
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from _timing import timed  # noqa: E402
 
 
 def main(argv=None) -> int:
@@ -65,9 +57,9 @@ def main(argv=None) -> int:
             d = fraction * depth
             ref = solve_periodic_displacement(op, h, penetration=d, tol=args.tol * 1e-3, max_iter=args.max_iter)
             t_dual, dual = timed(lambda d=d, op=op, h=h: solve_periodic_displacement(op, h, penetration=d, tol=args.tol,
-                                                                          max_iter=args.max_iter), args.repeats)
+                                                                          max_iter=args.max_iter), args.repeats, warm=True)
             t_primal, primal = timed(lambda d=d, op=op, h=h: solve_polonsky_keer(op, h, penetration=d, tol=args.tol,
-                                                                      max_iter=args.max_iter), args.repeats)
+                                                                      max_iter=args.max_iter), args.repeats, warm=True)
             norm = np.linalg.norm(ref.pressure)
             row = {"n": n, "fraction": fraction, "contact_area": float(np.mean(dual.pressure > 0)),
                    "dual_iterations": dual.iterations, "dual_s": t_dual, "dual_residual": dual.residual,

@@ -10,8 +10,8 @@ iteration's residual after 2000 iterations. (B) confined layer, SLS E_inf/E0 = 1
 """
 
 import os
-import statistics
-import time
+import sys
+from pathlib import Path
 
 import numpy as np
 
@@ -21,14 +21,8 @@ from contactlib.grid import Grid
 from contactlib.materials import Elastic
 from contactlib.solvers import solve_periodic_displacement
 
-
-def timed(f, repeats=3):
-    times, out = [], None
-    for _ in range(repeats):
-        t = time.perf_counter()
-        out = f()
-        times.append(time.perf_counter() - t)
-    return statistics.median(times), out
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from _timing import timed  # noqa: E402
 
 
 def plates():
@@ -62,8 +56,8 @@ def viscoelastic_layer():
             for P in (0.05, 0.5):
                 kw = dict(material=m, mean_pressure=P, sliding_velocity=zeta / q0, layer=contactlib.Layer(q0h / q0),
                           tol=1e-8)
-                t8, out = timed(lambda: contactlib.solve(h, friction=0.8, **kw))
-                t0, _ = timed(lambda: contactlib.solve(h, friction=0.0, **kw))
+                t8, out = timed(lambda: contactlib.solve(h, friction=0.8, **kw), 3)
+                t0, _ = timed(lambda: contactlib.solve(h, friction=0.0, **kw), 3)
                 print(f"| {q0h} | {zeta:g} | {P} | {out.attrs.get('monotone', 1)} | {out.attrs['solver']} | "
                       f"{float(out.contact_area):.3f} | {int(out.iterations)} ({int(out.get('outer_iterations', 0))}) | "
                       f"{float(out.residual):.1e} | {t8:.2f} | {t0:.2f} |", flush=True)
