@@ -50,11 +50,11 @@ from scipy.special import erfc
 
 from .. import fft
 from .._numba import jit
-from .asperities import AsperityTable
+from .asperities import NEIGHBOUR_SPACINGS, AsperityTable
 
 EWALD_CUTOFF = 3.6
 """``alpha r_c``: the short-range terms left out are below ``erfc(3.6) = 4e-7`` of ``1/r``."""
-EWALD_NEIGHBOURS = 2.5
+EWALD_NEIGHBOURS = NEIGHBOUR_SPACINGS
 """``r_c`` in mean spacings ``L / sqrt(N)``: about 20 neighbours per asperity in the real-space sum.
 Larger than the balance of the two sums' arithmetic, because the spreading, not the FFT, is the mesh
 part's cost: a coarser mesh (smaller ``alpha``) costs fewer FFT points, the same spreading."""
