@@ -9,7 +9,8 @@ Periodic: the sum over the images of every asperity, zero-mean as contactlib's p
 (split ``1/r = erfc(alpha r)/r + erf(alpha r)/r``):
 
 * the short-range part ``erfc(alpha r) / (pi E* r)`` over neighbours within ``r_c = 3.6 / alpha``
-  (a sparse matrix, built once with a k-d tree; ``erfc(3.6) < 4e-7``);
+  (a pair list from the table's one k-d tree query, summed by a numba kernel: no sparse matrix to build;
+  ``erfc(3.6) < 4e-7``);
 * the smooth long-range part in Fourier space, ``(2/(E* q)) erfc(q / (2 alpha))``, evaluated by FFT on a
   mesh after spreading the forces with Gaussians and gathering with the same Gaussians ("spectral
   Ewald", Lindbo & Tornberg, J. Comput. Phys. 229 (2010) 8994, doi:10.1016/j.jcp.2010.08.026); the
