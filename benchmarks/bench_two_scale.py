@@ -4,8 +4,8 @@ of asperities and their density (issue 17).
 Fields of :func:`contactlib.two_scale.random_asperity_field` (periodic unit window, random sequential
 addition at ``--coverages``: the fraction under footprints, 0.05 sparse to 0.4 nearly touching), with the
 grid chosen for ``--nodes-per-radius`` nodes per Hertz contact radius at the approach ``0.4 z``
-(``z``: mean summit height), the same grid for the full solver and the micro scale ("matched
-resolution"). Displacement control at that approach for all three, so the total force is an output:
+(``z``: mean summit height), rounded up to a 7-smooth size (a fast FFT size; never fewer nodes), the same
+grid for the full solver and the micro scale ("matched resolution": both get the fast size). Displacement control at that approach for all three, so the total force is an output:
 
 * **reference**: ``contactlib.solve(..., tol=--ref-tol)`` (1e-8);
 * **full**: ``contactlib.solve(..., tol=--full-tol)`` (1e-4, far below 1 % force error), timed;
@@ -32,11 +32,10 @@ for _var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
 
 import argparse
 import json
-import math
 import sys
 from pathlib import Path
 
-from contactlib.studies.two_scale import compare_methods, nodes_per_spacing
+from contactlib.studies.two_scale import compare_methods, grid_points
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from bench_solver import host_info  # noqa: E402
@@ -47,7 +46,7 @@ E, NU = 1.0, 0.5
 def run_case(count: int, coverage: float, args) -> dict:
     """One field: :func:`contactlib.studies.two_scale.compare_methods` (the study's own point), or the reason
     it was skipped."""
-    n = int(round(nodes_per_spacing(coverage, args.nodes_per_radius) * math.sqrt(count)))
+    n = grid_points(count, coverage, args.nodes_per_radius)
     case = {"count": count, "coverage": coverage, "n": n, "load_average": os.getloadavg()[0]}
     if n > args.max_nodes:
         case["skipped"] = f"grid {n}^2 above --max-nodes {args.max_nodes}"

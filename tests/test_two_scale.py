@@ -578,3 +578,57 @@ def test_known_initial_displacement_saves_a_product_and_nothing_else():
     assert len(counted) - products == products - 1
     np.testing.assert_array_equal(known[2], plain[2])
     np.testing.assert_allclose(known[0], plain[0], rtol=0, atol=1e-12 * plain[0].max())
+
+
+def test_pair_kernel_and_cached_pairs_match_a_fresh_query_and_the_sparse_matrix():
+    """The Ewald short-range part by the numba pair kernel against a sparse matrix of the pairs from a fresh
+    k-d tree query (not the table's cached one), and the cached narrower queries against fresh ones."""
+    from scipy import sparse
+    from scipy.spatial import cKDTree
+
+    field = ts.random_asperity_field(400, coverage=0.3, nodes_per_spacing=4, seed=4)
+    table = ts.asperity_table(field)  # its overlap check has cached the widest query
+    op = ts.PointInteraction(table, E_STAR)
+    cutoff = op.attrs["ewald_cutoff"]
+    tree = cKDTree(table.centers, boxsize=table.length)
+    for distance in (cutoff, 0.5 * cutoff):
+        fresh = tree.query_pairs(distance, output_type="ndarray")
+        k, l, _ = table.neighbour_pairs(distance)
+        assert {tuple(p) for p in fresh.tolist()} == set(zip(k.tolist(), l.tolist()))
+    fresh = tree.query_pairs(cutoff, output_type="ndarray")
+    k, l = fresh[:, 0], fresh[:, 1]
+    r = table.distance(k, l)
+    w = np.array([math.erfc(op.attrs["ewald_alpha"] * v) for v in r]) / (math.pi * E_STAR * r)
+    matrix = sparse.coo_matrix((np.r_[w, w], (np.r_[k, l], np.r_[l, k])), shape=(400, 400)).tocsr()
+    forces = np.random.default_rng(1).uniform(0.0, 1.0, 400)
+    out = np.zeros(400)
+    interaction_module._add_pairs(op._pair_k, op._pair_l, op._pair_w, forces, out)
+    expected = matrix @ forces
+    assert np.max(np.abs(out - expected)) < 1e-14 * np.max(np.abs(expected))
+
+
+def test_dataset_built_in_one_go_is_identical_to_the_constructors():
+    """The labelled output's direct build against ``xr.Dataset(data, coords=...)``: identical (values, attrs,
+    coordinates, indexes, order), with and without the grid fields."""
+    from contactlib.two_scale import _dataset
+
+    field = ts.random_asperity_field(30, coverage=0.2, nodes_per_spacing=12, seed=2)
+    for fields in (False, True):
+        out = ts.solve(field, E=E, nu=NU, penetration=2e-3, scale="macro", fields=fields)
+        data = {k: (v.dims, v.values, dict(v.attrs)) for k, v in out.data_vars.items()}
+        coords = {k: (v.dims[0] if k in v.dims else v.dims, v.values, dict(v.attrs)) for k, v in out.coords.items()}
+        xr.testing.assert_identical(_dataset(data, coords), xr.Dataset(data, coords=coords))
+        assert list(_dataset(data, coords).variables) == list(xr.Dataset(data, coords=coords).variables)
+
+
+def test_study_grid_is_a_fast_size_never_coarser():
+    from contactlib.studies.two_scale import grid_points, nodes_per_spacing, smooth_size
+
+    assert [smooth_size(n) for n in (696, 1929, 3100, 2200, 980, 1)] == [700, 1944, 3125, 2205, 980, 1]
+    for count, coverage in ((1000, 0.4), (1000, 0.05), (10000, 0.2)):
+        n = grid_points(count, coverage, 3.0)
+        assert n >= round(nodes_per_spacing(coverage, 3.0) * math.sqrt(count))
+    a = ts.asperity_table(ts.random_asperity_field(50, coverage=0.2, nodes_per_spacing=8, seed=0))
+    b = ts.asperity_table(ts.random_asperity_field(50, coverage=0.2, nodes_per_spacing=8, seed=0, n=63))
+    assert b.grid.shape == (63, 63) and np.array_equal(a.centers, b.centers)
+    np.testing.assert_array_equal(a.summit_height, b.summit_height)

@@ -26,7 +26,7 @@ from .. import two_scale
 from ..transient import solve_transient as full_transient
 from ._viscoelastic_scene import SCENE_VARIABLES, material
 from .two_scale import VARIABLES as TWO_SCALE_VARIABLES
-from .two_scale import nodes_per_spacing, two_scale_shapes
+from .two_scale import grid_points, nodes_per_spacing, two_scale_shapes
 
 METHODS = ("full", "two_scale", "macro")
 LABELS = {"full": "full transient solver", "two_scale": "two-scale method", "macro": "macro step",
@@ -61,7 +61,7 @@ def creep_point(*, count: int, coverage: float, glassy_ratio: float, seed: int, 
     m = material(E0=E, glassy_ratio=glassy_ratio, tau=tau, nu=nu)
     field = two_scale.random_asperity_field(int(count), coverage=coverage,
                                             nodes_per_spacing=nodes_per_spacing(coverage, nodes_per_radius),
-                                            seed=int(seed))
+                                            seed=int(seed), n=grid_points(count, coverage, nodes_per_radius))
     table = two_scale.asperity_table(field)
     summit = float(np.mean(table.summit_height))
     load = float(two_scale.solve(field, E=m.E_inf, nu=nu, penetration=approach * summit, scale="macro",

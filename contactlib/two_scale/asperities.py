@@ -9,6 +9,7 @@ no two footprints overlap. :func:`asperity_table` reads the table from the DataA
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -17,6 +18,10 @@ from scipy.spatial import cKDTree
 
 from ..contact import grid_of
 from ..grid import Grid
+
+NEIGHBOUR_SPACINGS = 2.5
+"""The Ewald sum's real-space reach in mean spacings ``L / sqrt(N)`` (:data:`.interaction.EWALD_NEIGHBOURS`):
+the widest neighbour query of a solve, done once (:meth:`AsperityTable.neighbour_pairs`)."""
 
 
 @dataclass(frozen=True)
@@ -68,13 +73,27 @@ class AsperityTable:
 
     def neighbour_pairs(self, distance: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """Pairs ``(k, l)``, ``k < l``, of summits closer than ``distance`` (nearest periodic image),
-        and their distances [length]."""
-        tree = cKDTree(self.centers, boxsize=self.length if self.periodic else None)
-        pairs = tree.query_pairs(distance, output_type="ndarray")
-        if pairs.size == 0:
-            return np.zeros(0, int), np.zeros(0, int), np.zeros(0)
-        k, l = pairs[:, 0], pairs[:, 1]
-        return k, l, self.distance(k, l)
+        and their distances [length]. The widest query is kept on the table and the narrower ones are
+        read from it: the overlap check and the Ewald sum's neighbours then cost one k-d tree query."""
+        cached = self.__dict__.get("_pairs")
+        if cached is None or cached[0] < distance:
+            # the validation's query asks for at least the Ewald sum's neighbours, which come next
+            reach = max(distance, NEIGHBOUR_SPACINGS * (self.length / math.sqrt(self.count)))  # as the Ewald cutoff
+            tree = cKDTree(self.centers, boxsize=self.length if self.periodic else None)
+            pairs = tree.query_pairs(reach, output_type="ndarray")
+            if pairs.size == 0:
+                k = l = np.zeros(0, np.int64)
+                r = np.zeros(0)
+            else:
+                k, l = pairs[:, 0].astype(np.int64), pairs[:, 1].astype(np.int64)
+                r = self.distance(k, l)
+            cached = (reach, k, l, r)
+            self.__dict__["_pairs"] = cached  # a cache, not a field: the dataclass stays frozen
+        reach, k, l, r = cached
+        if distance >= reach:
+            return k, l, r
+        keep = r <= distance
+        return k[keep], l[keep], r[keep]
 
     def distance(self, k: np.ndarray, l: np.ndarray) -> np.ndarray:
         """In-plane distance between summits ``k`` and ``l`` (nearest periodic image) [length]."""

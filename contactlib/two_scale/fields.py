@@ -17,7 +17,7 @@ SCATTER_CLIP = 3.0
 
 
 def random_asperity_field(count: int, *, coverage: float, nodes_per_spacing: int, height_scatter: float = 0.1,
-                          seed: int = 0, max_attempts: int = 200) -> xr.DataArray:
+                          seed: int = 0, max_attempts: int = 200, n: int | None = None) -> xr.DataArray:
     """``count`` identical spherical caps at random non-overlapping positions (random sequential addition)
     in a periodic unit window, with Gaussian summit scatter (clipped at 3 standard deviations).
 
@@ -36,6 +36,9 @@ def random_asperity_field(count: int, *, coverage: float, nodes_per_spacing: int
         Standard deviation of the summit heights over their mean [1].
     seed : int
         Random seed (positions and heights).
+    n : int, optional
+        Grid points per side instead (e.g. a fast FFT size at least ``nodes_per_spacing sqrt(N)``); the
+        asperities do not depend on it.
 
     Returns
     -------
@@ -55,7 +58,9 @@ def random_asperity_field(count: int, *, coverage: float, nodes_per_spacing: int
     heights = summit * (1 + height_scatter * np.clip(rng.standard_normal(int(count)), -SCATTER_CLIP, SCATTER_CLIP))
     heights = np.clip(heights, 0.05 * summit, tallest)
     centers = _sequential_addition(int(count), 2 * footprint * (1 + 1e-9), rng, max_attempts)
-    n = int(round(nodes_per_spacing * math.sqrt(count)))
+    n = int(round(nodes_per_spacing * math.sqrt(count))) if n is None else int(n)
+    if n < 2:
+        raise ValueError(f"n must be >= 2 grid points per side, got {n!r}")
     field = surfaces.spheres(n, length=1.0, radius=radius, centers=centers, summit_height=heights)
     field.attrs.update(coverage=coverage, footprint_radius=footprint)
     return field
