@@ -607,20 +607,6 @@ def test_pair_kernel_and_cached_pairs_match_a_fresh_query_and_the_sparse_matrix(
     assert np.max(np.abs(out - expected)) < 1e-14 * np.max(np.abs(expected))
 
 
-def test_dataset_built_in_one_go_is_identical_to_the_constructors():
-    """The labelled output's direct build against ``xr.Dataset(data, coords=...)``: identical (values, attrs,
-    coordinates, indexes, order), with and without the grid fields."""
-    from contactlib.two_scale import _dataset
-
-    field = ts.random_asperity_field(30, coverage=0.2, nodes_per_spacing=12, seed=2)
-    for fields in (False, True):
-        out = ts.solve(field, E=E, nu=NU, penetration=2e-3, scale="macro", fields=fields)
-        data = {k: (v.dims, v.values, dict(v.attrs)) for k, v in out.data_vars.items()}
-        coords = {k: (v.dims[0] if k in v.dims else v.dims, v.values, dict(v.attrs)) for k, v in out.coords.items()}
-        xr.testing.assert_identical(_dataset(data, coords), xr.Dataset(data, coords=coords))
-        assert list(_dataset(data, coords).variables) == list(xr.Dataset(data, coords=coords).variables)
-
-
 def test_study_grid_is_a_fast_size_never_coarser():
     from contactlib.studies.two_scale import grid_points, nodes_per_spacing, smooth_size
 
