@@ -10,6 +10,8 @@ from __future__ import annotations
 
 import math
 
+import numba
+
 from .._numba import jit as _jit
 
 
@@ -110,7 +112,8 @@ def rotate(H, rotations, g, k):
     return abs(g[k + 1])
 
 
-@_jit
+# no fastmath: the gap is a difference of near-equals, and reassociated it moves by eps |heights|
+@numba.njit(cache=True, nogil=True, boundscheck=False)
 def newton_sweep(p, active, displacement, hp, approach, gap, positive, following):
     """One pass of a Newton contact-set update (:func:`.semismooth.solve_semismooth`) instead of about ten
     numpy ones: ``gap = displacement - hp - approach``, ``positive = max(p, 0)``, the next set ``following``
