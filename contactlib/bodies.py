@@ -46,7 +46,7 @@ from .grid import Grid
 from .kernels.layer import BASES, zero_mode_compliance
 from .kernels.elastic import halfspace_love_multiplier
 from .kernels.tensor import SurfaceGreenTensor, halfspace_coupling_influence, surface_green_tensor
-from .kernels.viscoelastic import (modulus_deviation, real_where_self_conjugate, sliding_factor,
+from .kernels.viscoelastic import (modulus_deviations, real_where_self_conjugate, sliding_factor,
                                    steady_sliding_factor)
 from .materials import Elastic
 from .operators import Compliance, Coupling
@@ -228,12 +228,11 @@ def _material_factor(grid: Grid, material, velocity, limit: float, attrs: dict):
     if not moving:
         attrs["material_model"] = "elastic, relaxed modulus E0 (no sliding: the material is relaxed)"
         return None, material.E0, ", viscoelastic body at rest: relaxed (E0)"
-    relaxed = modulus_deviation(grid, material, velocity, material.E0)
+    relaxed, glassy = modulus_deviations(grid, material, velocity, (material.E0, material.E_inf))
     if relaxed <= limit:
         attrs["material_model"] = (f"elastic, relaxed modulus E0: |E*(q.V) - E0| <= {relaxed:.1e} E0 on the grid, "
                                    f"<= {REDUCTION_FRACTION} tol")
         return None, material.E0, ", viscoelastic body modelled elastic (E0: slow sliding)"
-    glassy = modulus_deviation(grid, material, velocity, material.E_inf)
     if glassy <= limit:
         attrs["material_model"] = (f"elastic, glassy modulus E_inf: |E*(q.V) - E_inf| <= {glassy:.1e} E_inf on the "
                                    f"grid, <= {REDUCTION_FRACTION} tol")

@@ -237,3 +237,22 @@ def test_bad_layer_thickness(thickness):
 def test_unknown_base():
     with pytest.raises(ValueError, match="base"):
         contactlib.Layer(0.1, "slippery")
+
+
+def test_interlocking_slope_reuse_follows_the_heights():
+    """The slope reused along a speed sweep is the one of the heights given: an in-place edit, another
+    direction or window gets a fresh one (against the cylinder's mu_a = x_c / R, exact for a parabola)."""
+    from contactlib.analysis.friction import interlocking_friction
+
+    n, R = 64, 10.0
+    x = (np.arange(n) - n // 2) * (1.0 / n)
+    h = -x**2 / (2 * R)
+    p = np.exp(-((x - 0.05) / 0.1) ** 2)
+    centroid = float(np.sum(p * x) / np.sum(p))
+    kw = dict(lengths=1.0, periodic=False)
+    assert interlocking_friction(p, h, **kw) == pytest.approx(centroid / R, rel=1e-12)
+    assert interlocking_friction(p, h, **kw) == pytest.approx(centroid / R, rel=1e-12)  # reused
+    h *= 2.0  # in place: the radius halves
+    assert interlocking_friction(p, h, **kw) == pytest.approx(2 * centroid / R, rel=1e-12)
+    assert interlocking_friction(p, h, lengths=2.0, periodic=False) == pytest.approx(centroid / R, rel=1e-12)
+    assert interlocking_friction(p, h, direction=np.pi, **kw) == pytest.approx(-2 * centroid / R, rel=1e-12)

@@ -44,5 +44,24 @@ def interlocking_friction(pressure, heights, *, lengths, direction: float = 0.0,
     total = float(p.sum())
     if total <= 0:
         return 0.0
-    slope = directional_slope(heights, lengths=lengths, direction=direction, periodic=periodic)
+    slope = _cached_slope(heights, lengths, direction, periodic)
     return -float(np.sum(p * slope)) / total
+
+
+_SLOPE_CACHE: list = []  # one entry (heights copy, lengths, direction, periodic, slope): a speed sweep's heights
+
+
+def _cached_slope(heights, lengths, direction, periodic) -> np.ndarray:
+    """:func:`directional_slope` of ``heights``, reused while the same heights come again (a sweep over
+    speeds labels every answer with the same surface: three transforms saved per speed). The hit is checked
+    on the values, not the object, so a caller that edits its array in place gets a fresh slope."""
+    heights = np.asarray(heights, dtype=float)
+    key = (tuple(np.broadcast_to(np.asarray(lengths, dtype=float), (heights.ndim,))), float(direction), bool(periodic))
+    if _SLOPE_CACHE:
+        stored, stored_key, slope = _SLOPE_CACHE[0]
+        if stored_key == key and stored.shape == heights.shape and np.array_equal(stored, heights):
+            return slope
+    slope = directional_slope(heights, lengths=lengths, direction=direction, periodic=periodic)
+    slope.flags.writeable = False
+    _SLOPE_CACHE[:] = [(heights.copy(), key, slope)]
+    return slope

@@ -38,7 +38,8 @@ import numpy as np
 
 from .ccg import _zero_state
 from .coarse import soft_modes, two_level
-from .state import ContactState, contact_residual, dot, height_scale
+from .state import ContactState, dot, height_scale
+from ._krylov_sweeps import newton_sweep
 
 MAX_SETS = 200
 """Contact-set updates before the solve is returned as not converged."""
@@ -125,12 +126,11 @@ def solve_semismooth(
         iterations += used
         p = np.zeros(n)
         p[index] = p_a
-        displacement = operator(p.reshape(shape)).reshape(-1)
-        gap = displacement - hp - approach
-        positive = np.maximum(p, 0.0)
-        residual = contact_residual(positive, gap, scale)
-        following = np.where(active, p > 0, gap < 0)
-        changed = int(np.count_nonzero(following != active))
+        displacement = np.ascontiguousarray(operator(p.reshape(shape)).reshape(-1), dtype=float)
+        gap, positive, following = np.empty(n), np.empty(n), np.empty(n, dtype=bool)
+        sums = newton_sweep(p, active, displacement, hp, float(approach), gap, positive, following)
+        residual = _residual(*sums[:3], n, scale)
+        changed = int(sums[3])
         state = ContactState(pressure=positive.reshape(shape), gap=gap.reshape(shape),
                              displacement=displacement.reshape(shape), penetration=float(approach),
                              mean_pressure=float(positive.mean()), iterations=iterations, residual=residual,
@@ -159,6 +159,15 @@ def solve_semismooth(
         else:
             inner_tol = min(inner_tol, max(tol / 16, 1e-3 * changed / n))
     return state
+
+
+def _residual(total, comp, pen, n, scale) -> float:
+    """:func:`.state.contact_residual` from the sums of :func:`._krylov_sweeps.newton_sweep` (the same
+    formula, summed in element order: it differs from numpy's pairwise means in round-off)."""
+    pbar = total / n
+    if pbar <= 0:
+        return float(pen / n / scale)
+    return float((comp / n + pbar * pen / n) / (pbar * scale))
 
 
 def _fix_approach(operator, preconditioner, index, unit, unit_approach, p_a, approach, total, penetration, tol,
