@@ -23,6 +23,7 @@ import numpy as np
 import xarray as xr
 
 from .contact import solve
+from .analysis.friction import reusing_slopes
 from .solvers.recycle import recycling
 from .solvers.state import dot
 
@@ -95,7 +96,7 @@ def solve_speeds(heights, sliding_velocities, *, recycle: bool = False, **kwargs
     if "sliding_velocity" in kwargs:
         raise ValueError("sliding_velocity: give the path as sliding_velocities")
     speeds, pressures, out = [], [], []
-    with recycling() if recycle else contextlib.nullcontext():
+    with recycling() if recycle else contextlib.nullcontext(), reusing_slopes():
         for velocity in sliding_velocities:
             speed = float(np.linalg.norm(np.atleast_1d(np.asarray(velocity, dtype=float))))
             if not (np.isfinite(speed) and speed > 0):

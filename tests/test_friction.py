@@ -240,9 +240,10 @@ def test_unknown_base():
 
 
 def test_interlocking_slope_reuse_follows_the_heights():
-    """The slope reused along a speed sweep is the one of the heights given: an in-place edit, another
-    direction or window gets a fresh one (against the cylinder's mu_a = x_c / R, exact for a parabola)."""
-    from contactlib.analysis.friction import interlocking_friction
+    """The slope reused along a speed sweep (inside ``reusing_slopes``) is the one of the heights given: an
+    in-place edit, another direction or window gets a fresh one (against the cylinder's mu_a = x_c / R,
+    exact for a parabola); outside the context nothing is kept."""
+    from contactlib.analysis import friction as fr
 
     n, R = 64, 10.0
     x = (np.arange(n) - n // 2) * (1.0 / n)
@@ -250,9 +251,13 @@ def test_interlocking_slope_reuse_follows_the_heights():
     p = np.exp(-((x - 0.05) / 0.1) ** 2)
     centroid = float(np.sum(p * x) / np.sum(p))
     kw = dict(lengths=1.0, periodic=False)
-    assert interlocking_friction(p, h, **kw) == pytest.approx(centroid / R, rel=1e-12)
-    assert interlocking_friction(p, h, **kw) == pytest.approx(centroid / R, rel=1e-12)  # reused
-    h *= 2.0  # in place: the radius halves
-    assert interlocking_friction(p, h, **kw) == pytest.approx(2 * centroid / R, rel=1e-12)
-    assert interlocking_friction(p, h, lengths=2.0, periodic=False) == pytest.approx(centroid / R, rel=1e-12)
-    assert interlocking_friction(p, h, direction=np.pi, **kw) == pytest.approx(-2 * centroid / R, rel=1e-12)
+    with fr.reusing_slopes():
+        assert fr.interlocking_friction(p, h, **kw) == pytest.approx(centroid / R, rel=1e-12)
+        kept = fr._SLOPES.get()[0][2]
+        assert fr.interlocking_friction(p, h, **kw) == pytest.approx(centroid / R, rel=1e-12)
+        assert fr._SLOPES.get()[0][2] is kept  # reused, not recomputed
+        h *= 2.0  # in place: the radius halves
+        assert fr.interlocking_friction(p, h, **kw) == pytest.approx(2 * centroid / R, rel=1e-12)
+        assert fr.interlocking_friction(p, h, lengths=2.0, periodic=False) == pytest.approx(centroid / R, rel=1e-12)
+        assert fr.interlocking_friction(p, h, direction=np.pi, **kw) == pytest.approx(-2 * centroid / R, rel=1e-12)
+    assert fr._SLOPES.get() is None

@@ -2,6 +2,9 @@
 
 from __future__ import annotations
 
+import contextlib
+import contextvars
+
 import numpy as np
 
 
@@ -48,20 +51,35 @@ def interlocking_friction(pressure, heights, *, lengths, direction: float = 0.0,
     return -float(np.sum(p * slope)) / total
 
 
-_SLOPE_CACHE: list = []  # one entry (heights copy, lengths, direction, periodic, slope): a speed sweep's heights
+_SLOPES: contextvars.ContextVar = contextvars.ContextVar("slopes", default=None)
+
+
+@contextlib.contextmanager
+def reusing_slopes():
+    """Within this context (this thread's), :func:`interlocking_friction` keeps the last heights' slope and
+    reuses it while the same heights come again: a speed sweep labels every answer with the same surface
+    (three transforms saved per speed). Scoped so that no grid-sized copy outlives the sweep."""
+    token = _SLOPES.set([])
+    try:
+        yield
+    finally:
+        _SLOPES.reset(token)
 
 
 def _cached_slope(heights, lengths, direction, periodic) -> np.ndarray:
-    """:func:`directional_slope` of ``heights``, reused while the same heights come again (a sweep over
-    speeds labels every answer with the same surface: three transforms saved per speed). The hit is checked
-    on the values, not the object, so a caller that edits its array in place gets a fresh slope."""
+    """:func:`directional_slope` of ``heights``, from the :func:`reusing_slopes` store when one is open and
+    holds the same heights. The hit is checked on the values, not the object, so a caller that edits its
+    array in place gets a fresh slope."""
+    store = _SLOPES.get()
+    if store is None:
+        return directional_slope(heights, lengths=lengths, direction=direction, periodic=periodic)
     heights = np.asarray(heights, dtype=float)
     key = (tuple(np.broadcast_to(np.asarray(lengths, dtype=float), (heights.ndim,))), float(direction), bool(periodic))
-    if _SLOPE_CACHE:
-        stored, stored_key, slope = _SLOPE_CACHE[0]
+    if store:
+        stored, stored_key, slope = store[0]
         if stored_key == key and stored.shape == heights.shape and np.array_equal(stored, heights):
             return slope
     slope = directional_slope(heights, lengths=lengths, direction=direction, periodic=periodic)
     slope.flags.writeable = False
-    _SLOPE_CACHE[:] = [(heights.copy(), key, slope)]
+    store[:] = [(heights.copy(), key, slope)]
     return slope
