@@ -7,6 +7,7 @@ import pytest
 
 import contactlib
 import contactlib.solvers.cohesive as cohesive
+import contactlib.solvers.cohesive_newton as cohesive_newton
 from contactlib.grid import Grid
 from contactlib.inputs import grid_of
 from contactlib.operators import Compliance
@@ -55,7 +56,7 @@ def check_against_newton(ds, h, law, *, periodic=True, start=None, **load):
     gap = op(p) + values.max() - values - delta
     scale = float(values.std())
     assert np.max(np.abs(gap - ds.gap.values)) < 1e-9 * scale
-    newton = cohesive._Newton(op, values, law, load.get("mean_pressure"), load.get("penetration"), 1e-10, 60)
+    newton = cohesive_newton.CohesiveNewton(op, values, law, load.get("mean_pressure"), load.get("penetration"), 1e-10, 60)
     assert newton.residual_of(p, gap, largest=False)[-1] < 2e-10
     start = contactlib.solve(h, E=1.0, nu=0.0, periodic=periodic, **load) if start is None else start
     state, _ = solve_cohesive(op, values, adhesion=law, tol=1e-10, initial_pressure=start.pressure.values,

@@ -20,9 +20,9 @@ Two methods, tried in this order:
    round itself (``a = 0``). Where the fixed point converges slowly (its gain ``|a'| K`` over the
    process zone is near 1 on a single smooth contact with a resolved zone: the JKR sphere, a 1D wavy
    profile), it stops after :data:`STALL_ROUNDS` rounds without a :data:`STALL_DROP` fall.
-2. **Semi-smooth Newton** (primal-dual active set, :class:`_Newton`): on the active set ``C = {p_r > c g}``
-   the row is ``g = 0`` (contact), elsewhere ``p = a(g)`` (the law), linearised with ``a'(g)``. Each
-   Newton system goes to GMRES with the body's operator and, on the contact rows, the Fourier
+2. **Semi-smooth Newton** (primal-dual active set, :class:`.cohesive_newton.CohesiveNewton`): on the active
+   set ``C = {p_r > c g}`` the row is ``g = 0`` (contact), elsewhere ``p = a(g)`` (the law), linearised
+   with ``a'(g)``. Each Newton system goes to GMRES with the body's operator and, on the contact rows, the Fourier
    preconditioner the constrained CG uses (``operator.inverse_multiplier``). Load control adds the
    approach as unknown and ``mean(p) = P``. It starts from the non-adhesive state of the scene (or the
    warm start). The Maugis step is a narrow ramp (:data:`contactlib.adhesion.MAUGIS_RAMP`), so Newton
@@ -50,8 +50,9 @@ import numpy as np
 from . import _cohesive_sweeps as sweeps
 from ..adhesion import MAUGIS_RAMP
 from .ccg import solve_polonsky_keer
+from .cohesive_newton import CohesiveNewton
 from .cohesive_rounds import Rounds
-from .state import ContactState, height_scale
+from .state import ContactState
 
 MAX_NEWTON = 60
 """Default bound on the Newton iterations of one solve (one range)."""
@@ -64,23 +65,6 @@ FIRST_FRACTION = 1.0 / 16
 
 STAGES = 16
 """Bound on the Newton solves of that continuation."""
-
-C_SCALE = 1.0
-"""The complementarity constant ``c`` in units of an element's stiffness ``pi E* / (2 dx)`` (0.1-10 gave
-the same iteration counts on the Maugis sphere)."""
-
-BACKTRACK = 6
-"""Halvings of a Newton step that would multiply the residual by more than :data:`GROWTH`."""
-
-GROWTH = 2.0
-
-NEAR = 1e-4
-"""Backtracking acts only below this residual: far from the answer the first Newton steps must be free
-to move the contact a long way (a cold start at small range failed with it on)."""
-
-STALL = 12
-"""Newton iterations without halving the best residual that count as a stall."""
-
 
 ANDERSON_DEPTH = 5
 """Rounds of the frozen-traction iteration that Anderson mixing combines (2-8 took the same rounds on the
@@ -174,12 +158,12 @@ def solve_cohesive(
             p, delta = _cold_start(operator, heights, adhesion, mean_pressure, penetration, solve_repulsive)
         if delta is None:
             delta = 0.0
-        result = _Newton(operator, heights, adhesion, mean_pressure, penetration, tol, max_iter)(p, delta)
+        result = CohesiveNewton(operator, heights, adhesion, mean_pressure, penetration, tol, max_iter)(p, delta)
     if not result[-1]:  # stalled: continuation in the range (8, 4, 2, 1 times), warm-started stage to stage
         p_c, d_c = p, delta
         for factor in RANGES:
             law = dataclasses.replace(adhesion, range=adhesion.range * factor)
-            result = _Newton(operator, heights, law, mean_pressure, penetration, tol, max_iter)(p_c, d_c)
+            result = CohesiveNewton(operator, heights, law, mean_pressure, penetration, tol, max_iter)(p_c, d_c)
             p_c, d_c = result[0], result[1]
     if not result[-1]:  # still stalled: continuation in the work of adhesion from the cold start
         result = _continuation(operator, heights, adhesion, mean_pressure, penetration, tol, max_iter,
@@ -199,7 +183,7 @@ def _continuation(operator, heights, adhesion, mean_pressure, penetration, tol, 
     done, f, result = 0.0, FIRST_FRACTION, None
     for _ in range(STAGES):
         law = dataclasses.replace(adhesion, work=adhesion.work * f)
-        trial = _Newton(operator, heights, law, mean_pressure, penetration, tol, max_iter)(p, delta)
+        trial = CohesiveNewton(operator, heights, law, mean_pressure, penetration, tol, max_iter)(p, delta)
         if trial[-1]:
             p, delta, done, result = trial[0], trial[1], f, trial
             if f == 1.0:
@@ -234,13 +218,13 @@ class _FrozenTraction:
     converge where plain substitution oscillates (its gain ``|a'| K`` is of order 1 across the process
     zone, which is what sets the zone's length). Each inner solve is warm-started from the last ``q``,
     stopped at a tolerance that follows the outer residual down and, on the primal path, after
-    :data:`INNER_ITERATIONS` iterations. The residual is that of :class:`_Newton` with the mean
+    :data:`INNER_ITERATIONS` iterations. The residual is that of :class:`.cohesive_newton.CohesiveNewton` with the mean
     interpenetration, on the state ``(a + q, g)`` the inner solve returns."""
 
     def __init__(self, operator, heights, adhesion, mean_pressure, penetration, tol, solve_repulsive):
         self.op, self.law, self.tol, self.solve = operator, adhesion, tol, solve_repulsive
         self.heights, self.load, self.penetration = heights, mean_pressure, penetration
-        self.measure = _Newton(operator, heights, adhesion, mean_pressure, penetration, tol, 1)
+        self.measure = CohesiveNewton(operator, heights, adhesion, mean_pressure, penetration, tol, 1)
         # the primal solver keeps its progress from a warm start, so a few iterations a round suffice; the dual
         # one (periodic displacement control) restarts from the gap of the pressure and needs its full solve
         dual = not operator.definite and mean_pressure is None
@@ -332,7 +316,7 @@ class _FrozenTraction:
             a = self.mix(a, self.image)
 
     def _residual(self, p, g, image):
-        """:meth:`_Newton.residual_of` (mean interpenetration) in one sweep, writing the law's traction at
+        """:meth:`.cohesive_newton.CohesiveNewton.residual_of` (mean interpenetration) in one sweep, writing the law's traction at
         the gap ``g`` into ``image``."""
         m, law = self.measure, self.law
         code = sweeps.MAUGIS if law.model == "maugis" else sweeps.EXPONENTIAL
@@ -375,131 +359,3 @@ class _Anderson:
         out = np.empty_like(x)
         sweeps.anderson_mix(x, image, self.dx, self.df, gamma, m, ANDERSON_BETA, self.lower, self.upper, out)
         return out.reshape(shape)
-
-
-class _Newton:
-    """One semi-smooth Newton solve of the cohesive contact at one range."""
-
-    def __init__(self, operator, heights, adhesion, mean_pressure, penetration, tol, max_iter):
-        self.op, self.law, self.tol, self.max_iter = operator, adhesion, tol, int(max_iter)
-        self.shape, self.n = heights.shape, heights.size
-        self.h0 = heights.max() - heights
-        self.load = mean_pressure
-        self.control = mean_pressure is not None
-        self.sigma0 = adhesion.peak_stress
-        # an element's stiffness: the compliance at the shortest wave, 2 / (E* q_max)
-        self.c = C_SCALE * operator.E_star * np.pi / (2 * min(operator.grid.spacing))
-        self.hs = height_scale(heights)
-        self.pscale = self.sigma0 + (abs(mean_pressure) if self.control else 0.0)
-
-    def _evaluate(self, p, delta):
-        return self.residual_of(p, self.op(p) + self.h0 - delta)
-
-    def residual_of(self, p, g, largest=True):
-        """``(g, p_r, active, phi, residual)`` of the traction ``p`` and its gap ``g``; the interpenetration
-        term is the largest (``largest``) or the mean one."""
-        p_r = p - self.law.traction(g)
-        active = p_r > self.c * g
-        phi = np.where(active, self.c * g, p_r)
-        overlap = np.maximum(-g, 0.0)
-        overlap = float(np.max(overlap)) if largest else float(np.mean(overlap))
-        residual = max(float(np.mean(np.abs(phi))) / self.c, overlap) / self.hs
-        if self.control:
-            residual = max(residual, abs(float(p.mean()) - self.load) / self.pscale)
-        return g, p_r, active, phi, residual
-
-    def _stiffness(self, field):
-        self.op.load()[...] = field
-        return self.op.convolve(inverse=True).copy()
-
-    def __call__(self, p, delta):
-        n, shape, c = self.n, self.shape, self.c
-        g, p_r, active, phi, residual = self._evaluate(p, delta)
-        best, best_it, krylov, it = residual, 0, 0, 0
-        for it in range(1, self.max_iter + 1):
-            if residual <= self.tol:
-                it -= 1
-                break
-            if it - best_it > STALL:
-                break
-            on = active.astype(float)
-            off = 1.0 - on
-            slope = self.law.traction_slope(g)
-            size = n + (1 if self.control else 0)
-
-            def matvec(v):
-                dp = v[:n].reshape(shape)
-                dg = self.op(dp) - (v[n] if self.control else 0.0)
-                rows = (on * c * dg + off * (dp - slope * dg)).ravel()
-                return np.concatenate([rows, [c * dp.mean()]]) if self.control else rows
-
-            def precondition(v):
-                r = v[:n].reshape(shape)
-                z = (off * r + on * self._stiffness(on * r) / c).ravel()
-                return np.concatenate([z, [v[n] / c]]) if self.control else z
-
-            rhs = -phi.ravel()
-            if self.control:
-                rhs = np.concatenate([rhs, [-c * (float(p.mean()) - self.load)]])
-            step, used = gmres(matvec, precondition, rhs, rtol=min(1e-4, max(0.1 * residual, 1e-10)))
-            krylov += used
-            # near the answer a step that multiplies the residual is cut back (halved up to BACKTRACK times): the
-            # answer an active-set flip at the contact edge can throw a full step far off
-            for halving in range(BACKTRACK + 1):
-                trial_p = p + step[:n].reshape(shape)
-                trial_d = delta + (float(step[n]) if self.control else 0.0)
-                trial = self._evaluate(trial_p, trial_d)
-                if trial[-1] <= GROWTH * residual or residual > NEAR or halving == BACKTRACK:
-                    break
-                step = 0.5 * step
-            p, delta = trial_p, trial_d
-            g, p_r, active, phi, residual = trial
-            if residual < 0.5 * best:
-                best, best_it = residual, it
-        # the open rows hold the law's (tensile) traction only to the Krylov tolerance: on a non-periodic window
-        # the far edge kept 1e-93 to 1e-80 of compression, read as contact cut by the window. Open rows in
-        # compression get the law's traction, and the state is measured again (kept unless it is worse)
-        polished = np.where(active | (p <= 0.0), p, self.law.traction(g))
-        trial = self._evaluate(polished, delta)
-        if trial[-1] <= max(residual, self.tol):
-            p, (g, p_r, active, phi, residual) = polished, trial
-        converged = residual <= self.tol
-        return p, delta, g, np.where(active, p_r, 0.0), it, krylov, residual, converged
-
-
-def gmres(matvec, precondition, rhs: np.ndarray, *, rtol: float, restart: int = 40, max_cycles: int = 20
-          ) -> tuple[np.ndarray, int]:
-    """Right-preconditioned restarted GMRES (Saad & Schultz 1986), classical Gram-Schmidt done twice
-    with BLAS: ``(x, iterations)``, ``|rhs - A x| <= rtol |rhs|`` unless the cycles run out."""
-    x = np.zeros_like(rhs)
-    target = rtol * float(np.linalg.norm(rhs))
-    total = 0
-    r = rhs.copy()
-    for _ in range(max_cycles):
-        beta = float(np.linalg.norm(r))
-        if beta <= target or beta == 0.0:
-            break
-        V = np.zeros((restart + 1, rhs.size))
-        Z = np.zeros((restart, rhs.size))
-        H = np.zeros((restart + 1, restart))
-        V[0] = r / beta
-        k = 0
-        for k in range(restart):
-            Z[k] = precondition(V[k])
-            w = matvec(Z[k])
-            for _ in range(2):  # CGS2: one more pass restores orthogonality
-                h = V[: k + 1] @ w
-                w -= h @ V[: k + 1]
-                H[: k + 1, k] += h
-            H[k + 1, k] = float(np.linalg.norm(w))
-            total += 1
-            e1 = np.zeros(k + 2)
-            e1[0] = beta
-            y, *_ = np.linalg.lstsq(H[: k + 2, : k + 1], e1, rcond=None)
-            estimate = float(np.linalg.norm(H[: k + 2, : k + 1] @ y - e1))
-            if H[k + 1, k] <= 1e-14 * beta or estimate <= target:
-                break
-            V[k + 1] = w / H[k + 1, k]
-        x += y @ Z[: k + 1]
-        r = rhs - matvec(x)
-    return x, total
