@@ -103,6 +103,12 @@ def _own(A, lams, equivalent: bool):
     return (ref.jkr_extrapolation(values, lams) - A**3 + np.sqrt(6 * A**3)) / 1.5
 
 
+def floor(jkr, scale: float):
+    """The denominator of the floored relative load error ``|P - P_JKR| / max(|P_JKR|, |P_c|)``: the load
+    itself where it is larger than the pull-off force, ``|P_c|`` where the load crosses zero (1.59 a_c)."""
+    return np.maximum(np.abs(jkr), scale)
+
+
 def _increasing(x, y):
     order = np.argsort(x)
     return x[order], y[order]
@@ -126,23 +132,30 @@ def run(lams, n: int, length: float, model: str, radii_over, tol: float, equival
     A_scale = (K / (math.pi * W * R**2)) ** (1 / 3)
     lo = max(curves[lam][0].min() for lam in lams)
     hi = min(curves[lam][0].max() for lam in lams)
-    radii = np.linspace(lo, hi, 61)
+    radii = np.linspace(lo, hi, 1501)  # every 0.001 a_c or so
     jkr = ref.jkr_load(radii, radius=R, E_star=E_STAR, work=W)
-    bands = [(0.0, 1.0), (1.0, 1.6), (1.6, 2.0), (2.0, 2.5)]
+    bands = [(0.0, 1.0), (1.0, 1.6), (1.6, 1.8), (1.8, 2.0), (2.0, 2.2), (2.2, 2.5)]
     for k in range(2, len(lams) + 1):
         for subset in itertools.combinations(lams, k):
-            error = (limit(curves, subset, radii) - jkr) / scale
-            own = _own(radii * A_scale, subset, equivalent)
+            difference = limit(curves, subset, radii) - jkr
+            error, relative = difference / scale, difference / floor(jkr, scale)
+            coarse = np.linspace(lo, hi, 61)  # the closed form's own error is smooth: sampled coarser
+            own = np.interp(radii, coarse, _own(coarse * A_scale, subset, equivalent))
             parts = []
             for b0, b1 in bands:
                 sel = (radii / a_c >= b0) & (radii / a_c < b1)
                 if sel.any():
                     parts.append(f"{max(b0, lo / a_c):.2f}-{min(b1, hi / a_c):.2f} a_c: "
-                                 f"{np.abs(error[sel]).max():.4f} (own {np.abs(own[sel]).max():.4f})")
+                                 f"{np.abs(error[sel]).max():.4f} (own {np.abs(own[sel]).max():.4f}; "
+                                 f"floored relative {np.abs(relative[sel]).max():.4f})")
             weights = ref.jkr_weights(subset)
             print(f"{model} limit from lambda {', '.join(f'{x:g}' for x in subset)} (sum |weights| "
                   f"{np.abs(weights).sum():.1f}): largest |error| vs JKR / |P_c| by band, " + "; ".join(parts),
                   flush=True)
+            fails = radii[np.abs(error) >= 0.03]  # where the |P_c| measure first reaches 3 %
+            print(f"  |P_c| measure < 3 % from {lo / a_c:.2f} a_c up to {(fails.min() if fails.size else hi) / a_c:.3f}"
+                  f" a_c; floored relative measure at most {np.abs(relative).max():.4f} over "
+                  f"{lo / a_c:.2f}-{hi / a_c:.2f} a_c", flush=True)
     # the table for all the lambdas: the load error at each radius and the radius error at each load
     rows = np.unique(np.concatenate([np.round(np.array(radii_over), 2), [1.0, 1.59]]))
     rows = rows[(rows * a_c >= lo) & (rows * a_c <= hi)]
@@ -153,8 +166,8 @@ def run(lams, n: int, length: float, model: str, radii_over, tol: float, equival
     branch = {lam: (curves[lam][2][curves[lam][0] >= a_c], curves[lam][0][curves[lam][0] >= a_c]) for lam in lams}
     print(f"\nall lambdas {', '.join(f'{x:g}' for x in lams)}, n {n}, L {length:g}, tol {tol:g}, radius "
           + ("a + 2/3 (c - a)" if equivalent else "a"))
-    print("a/a_c  P_JKR/|P_c|  (P_lim - P_JKR)/|P_c|  own  lambda=" + f"{lams[-1]:g}" + " alone  "
-          "|  at P_JKR: (a_lim - a_JKR)/a_JKR")
+    print("a/a_c  P_JKR/|P_c|  (P_lim - P_JKR)/|P_c|  (P_lim - P_JKR)/max(|P_JKR|, |P_c|)  own  lambda="
+          + f"{lams[-1]:g}" + " alone  |  at P_JKR: (a_lim - a_JKR)/a_JKR")
     top = lams[-1]
     for r, p, pj, o in zip(rows, P, jkr_rows, own):
         alone = (CubicSpline(*_increasing(curves[top][0], curves[top][2]))(r * a_c) - pj) / scale
@@ -164,7 +177,8 @@ def run(lams, n: int, length: float, model: str, radii_over, tol: float, equival
         if r >= 1.0 and max(lows) <= pj <= min(highs) and all(len(branch[lam][0]) > 3 for lam in lams):
             a_lim = ref.jkr_extrapolation([CubicSpline(*_increasing(*branch[lam]))(pj) for lam in lams], lams)
             radius_error = (a_lim - r * a_c) / (r * a_c)
-        print(f"{r:5.2f}  {pj / scale:+8.4f}  {(p - pj) / scale:+8.4f}  {o:+8.4f}  {alone:+8.4f}  |  "
+        print(f"{r:5.2f}  {pj / scale:+8.4f}  {(p - pj) / scale:+8.4f}  {(p - pj) / floor(pj, scale):+8.4f}  "
+              f"{o:+8.4f}  {alone:+8.4f}  |  "
               f"{radius_error:+.5f}")
 
 
