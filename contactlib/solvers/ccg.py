@@ -24,7 +24,7 @@ from collections.abc import Callable
 import numpy as np
 
 from . import _fused as fz
-from .state import ContactState, height_scale
+from .state import ContactState, height_scale, residual_from_sums
 
 RESTART_FRACTION = 0.01
 """The conjugacy restarts (``beta = 0``) when a step re-enters more than this fraction of the contact
@@ -160,7 +160,7 @@ def solve_polonsky_keer(
             if load_control:
                 approach = factor * sweeps.contact_sum(w, contact) / n_contact
             comp, pen, G, psum = sweeps.measure(w, factor, approach, p, masked if precondition else unused, precondition)
-            residual = (comp + psum * pen / n) / (psum * scale) if psum > 0 else pen / (n * scale)
+            residual = residual_from_sums(comp, pen, psum, n, scale)
             own = residual
             if rounds is not None and rounds.due(it, residual):
                 moved = rounds.advance(p, factor, w, approach, hp, transforms)
@@ -171,7 +171,7 @@ def solve_polonsky_keer(
                     approach = factor * sweeps.contact_sum(w, contact) / n_contact
                 comp, pen, G, psum = sweeps.measure(w, factor, approach, p, masked if precondition else unused,
                                                     precondition)
-                residual = own = (comp + psum * pen / n) / (psum * scale) if psum > 0 else pen / (n * scale)
+                residual = own = residual_from_sums(comp, pen, psum, n, scale)
                 restart, best, best_it = True, np.inf, it
             if verify is not None and residual <= (tol if verify_below is None else verify_below):
                 residual = max(residual, verify(_state(p * factor, factor * w - approach, hp, shape, approach, it,

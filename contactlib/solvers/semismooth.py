@@ -38,7 +38,7 @@ import numpy as np
 
 from .ccg import _zero_state
 from .coarse import soft_modes, two_level
-from .state import ContactState, dot, height_scale
+from .state import ContactState, dot, height_scale, residual_from_sums
 from ._krylov_sweeps import newton_sweep
 
 MAX_SETS = 200
@@ -129,7 +129,7 @@ def solve_semismooth(
         displacement = np.ascontiguousarray(operator(p.reshape(shape)).reshape(-1), dtype=float)
         gap, positive, following = np.empty(n), np.empty(n), np.empty(n, dtype=bool)
         sums = newton_sweep(p, active, displacement, hp, float(approach), gap, positive, following)
-        residual = _residual(*sums[:3], n, scale)
+        residual = residual_from_sums(sums[1], sums[2], sums[0], n, scale)
         changed = int(sums[3])
         state = ContactState(pressure=positive.reshape(shape), gap=gap.reshape(shape),
                              displacement=displacement.reshape(shape), penetration=float(approach),
@@ -159,15 +159,6 @@ def solve_semismooth(
         else:
             inner_tol = min(inner_tol, max(tol / 16, 1e-3 * changed / n))
     return state
-
-
-def _residual(total, comp, pen, n, scale) -> float:
-    """:func:`.state.contact_residual` from the sums of :func:`._krylov_sweeps.newton_sweep` (the same
-    formula, summed in element order: it differs from numpy's pairwise means in round-off)."""
-    pbar = total / n
-    if pbar <= 0:
-        return float(pen / n / scale)
-    return float((comp / n + pbar * pen / n) / (pbar * scale))
 
 
 def _fix_approach(operator, preconditioner, index, unit, unit_approach, p_a, approach, total, penetration, tol,

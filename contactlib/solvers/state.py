@@ -49,6 +49,12 @@ def contact_residual(pressure: np.ndarray, gap: np.ndarray, scale: float) -> flo
     return (comp + pbar * pen) / (pbar * scale)
 
 
+def residual_from_sums(comp: float, pen: float, psum: float, n: int, scale: float) -> float:
+    """:func:`contact_residual` from its sums over the ``n`` grid points: ``comp = sum(p |g|)``, ``pen =
+    sum(max(-g, 0))``, ``psum = sum(p)`` (a solver's fused sweep gives them in one pass)."""
+    return (comp + psum * pen / n) / (psum * scale) if psum > 0 else pen / (n * scale)
+
+
 def dot(a: np.ndarray, b: np.ndarray) -> float:
     """``sum(a * b)`` of two real fields, without BLAS. OpenBLAS threads a dot product of a 128^2 field,
     and next to FFTW's spinning threads or a second process that took 23 ms against 5 us single-threaded
