@@ -22,7 +22,7 @@ from ..materials import contact_modulus
 from ..operators import Compliance
 from .asperities import AsperityTable, asperity_forces, asperity_table
 from .fields import random_asperity_field
-from .interaction import PointInteraction
+from .interaction import ACCURACY, PointInteraction
 from .laws import TabulatedLaw, tabulated_law
 from .macro import HertzLaw, MacroState, solve_macro
 from .micro import MicroState, hertz_pressure_field, solve_micro, window_size
@@ -39,6 +39,15 @@ it runs at this fraction of the outer tolerance (``force_tol``, else ``tol``), b
 :data:`MACRO_TOL`."""
 START_TOL_MIN = 1e-8
 """The tightest default start: tighter gains the sweeps nothing, and Newton's residual has a floor near 1e-15."""
+INTERACTION_ACCURACY_FACTOR = 0.1
+"""The Ewald products' accuracy (:class:`.PointInteraction`) as a fraction of ``macro_tol``, between
+:data:`.interaction.ACCURACY` (1e-7) and :data:`INTERACTION_ACCURACY_MAX`: the Newton residual is measured with
+the same products, so their error moves the forces by about as much, a tenth of the tolerance. The two-scale
+sweeps use them only in the coarse correction, which changes a sweep's contraction, not its fixed point
+(``micro.COARSE_RTOL``, 1e-2 to 1e-4); they get the same accuracy (1e-5 at ``force_tol`` 1e-2, 1e-7 at ``tol``
+1e-6)."""
+INTERACTION_ACCURACY_MAX = 1e-5
+"""The loosest Ewald products (7 x 7 Gaussian nodes at 1e-4 against 9 x 9 at 1e-5: 10-20 % of a product)."""
 
 __all__ = ["solve", "solve_transient", "asperity_table", "asperity_forces", "random_asperity_field", "AsperityTable",
            "PointInteraction", "HertzLaw", "TabulatedLaw", "tabulated_law", "solve_macro", "solve_micro",
@@ -216,7 +225,8 @@ def solve(
     total_force = None if mean_pressure is None else float(mean_pressure) * table.length**2
 
     start = time.perf_counter()
-    interaction = PointInteraction(table, E_star)
+    accuracy = min(max(INTERACTION_ACCURACY_FACTOR * macro_tol, ACCURACY), INTERACTION_ACCURACY_MAX)
+    interaction = PointInteraction(table, E_star, accuracy=accuracy)
     law = HertzLaw(table.radius, E_star) if law is None else law
     macro = solve_macro(table, interaction, law, penetration=penetration, total_force=total_force, z_top=z_top,
                         tol=macro_tol, max_iter=int(max_iter))
