@@ -411,22 +411,26 @@ def test_dense_window_compliance_equals_the_padded_fft():
     assert WindowStack(DENSE_WINDOW + 2, 0.01, E_STAR)._dense is None  # large windows: the FFT
 
 
-def test_coarse_ewald_mesh_matches_the_fine_one(monkeypatch):
-    """The Ewald sum's mesh and spreading (12 x 12 nodes per asperity on a mesh of spacing s) against the
-    earlier, finer setting (21 x 21 nodes, spacing 0.6 s, cut-off 2.2 spacings) on 2000 random asperities:
-    the displacements agree to 3e-7 of the largest and the diagonal to 1e-9."""
+@pytest.mark.parametrize("accuracy", [1e-4, 1e-5, 1e-7])
+def test_ewald_accuracy_is_what_was_asked(monkeypatch, accuracy):
+    """The Ewald products at a requested ``accuracy`` (their cut-off, mesh and Gaussian support from
+    :func:`ewald_parameters`) against a sum at 1e-12 with another splitting (cut-off 2.0 spacings instead of
+    2.5) on 2000 random asperities: the displacements within ``accuracy`` of the largest (0.4-0.8 of it
+    measured), the diagonal within 1e-2 of it (1e-3 measured); the loosest spreads on 8 x 8 nodes, the
+    default on 13 x 13."""
     field = ts.random_asperity_field(2000, coverage=0.2, nodes_per_spacing=4, seed=5)
     table = ts.asperity_table(field)
-    forces = np.random.default_rng(5).uniform(0.5, 1.5, table.count)
-    coarse = ts.PointInteraction(table, E_STAR)
-    monkeypatch.setattr(interaction_module, "MESH_SPACING", 0.6)
-    monkeypatch.setattr(interaction_module, "SUPPORT", 6.0)
-    monkeypatch.setattr(interaction_module, "EWALD_NEIGHBOURS", 2.2)
-    fine = ts.PointInteraction(table, E_STAR)
-    assert fine.attrs["ewald_mesh"] > 1.5 * coarse.attrs["ewald_mesh"]
-    u_fine = fine(forces)
-    assert np.max(np.abs(coarse(forces) - u_fine)) < 3e-7 * np.max(np.abs(u_fine))
-    np.testing.assert_allclose(coarse.diagonal, fine.diagonal, rtol=1e-9)
+    rng = np.random.default_rng(5)
+    loads = (rng.uniform(0.5, 1.5, table.count), rng.uniform(0.0, 1.0, table.count) ** 4)
+    op = ts.PointInteraction(table, E_STAR, accuracy=accuracy)
+    monkeypatch.setattr(interaction_module, "EWALD_NEIGHBOURS", 2.0)
+    fine = ts.PointInteraction(table, E_STAR, accuracy=1e-12)
+    assert fine.attrs["ewald_alpha"] > op.attrs["ewald_alpha"] and fine.attrs["ewald_support"] > 20
+    assert op.attrs["ewald_support"] <= {1e-4: 8, 1e-5: 9, 1e-7: 13}[accuracy]
+    for forces in loads:
+        u_fine = fine(forces)
+        assert np.max(np.abs(op(forces) - u_fine)) < accuracy * np.max(np.abs(u_fine))
+    np.testing.assert_allclose(op.diagonal, fine.diagonal, rtol=0.01 * accuracy)
 
 
 def test_separable_spreading_matches_the_sparse_matrix():
@@ -439,8 +443,8 @@ def test_separable_spreading_matches_the_sparse_matrix():
     centers = rng.uniform(0.0, 1.0, (300, 2))
     centers[:3] = [[0.0, 0.0], [0.999, 0.5], [0.01, 0.995]]  # supports across the window's edges
     m, s = 64, 0.02
-    rows, cols, gx, gy = _gaussian_factors(centers, 1.0, m, s)
-    matrix = _gaussian_gather(centers, 1.0, m, s)
+    rows, cols, gx, gy = _gaussian_factors(centers, 1.0, m, s, 4.8)  # 9 nodes per axis: accuracy 1e-5
+    matrix = _gaussian_gather(centers, 1.0, m, s, 4.8)
     forces = rng.uniform(-1.0, 1.0, 300)
     mesh = np.zeros((m, m))
     _spread(rows, cols, gx, gy, forces, mesh)
@@ -484,6 +488,7 @@ def test_default_macro_tolerance_is_far_below_the_model_error():
     default = ts.solve(field, E=E, nu=NU, penetration=approach, scale="macro", fields=False)
     tight = ts.solve(field, E=E, nu=NU, penetration=approach, scale="macro", fields=False, macro_tol=1e-13)
     assert default.attrs["macro_tol"] == 1e-4 and default.attrs["macro_residual"] <= 1e-4
+    assert default.attrs["ewald_accuracy"] == 1e-5 and tight.attrs["ewald_accuracy"] == 1e-7  # 0.1 macro_tol, clipped
     assert np.max(np.abs(default.force.values - tight.force.values)) < 1e-4 * float(tight.force.max())
 
 
@@ -605,6 +610,27 @@ def test_pair_kernel_and_cached_pairs_match_a_fresh_query_and_the_sparse_matrix(
     interaction_module._add_pairs(op._pair_k, op._pair_l, op._pair_w, forces, out)
     expected = matrix @ forces
     assert np.max(np.abs(out - expected)) < 1e-14 * np.max(np.abs(expected))
+
+
+@pytest.mark.parametrize("count, reach, periodic", [(1000, 0.079, True), (1000, 0.079, False), (30, 0.9, True),
+                                                     (30, 0.4, True), (200, 0.4, False), (5, 0.0, True)])
+def test_cell_list_pairs_match_a_kd_tree(count, reach, periodic):
+    """The neighbour pairs of the numba cell list against scipy's k-d tree (periodic or not, one cell or many,
+    points on the window's edges), and their distances against the nearest image's."""
+    from scipy.spatial import cKDTree
+
+    from contactlib.two_scale.asperities import cell_pairs
+
+    rng = np.random.default_rng(count)
+    centers = rng.uniform(0.0, 1.0, (count, 2))
+    centers[0], centers[-1] = [0.0, 0.0], [1.0 - 1e-12, 0.5]
+    k, l, r = cell_pairs(centers, 1.0, reach, periodic)
+    fresh = cKDTree(centers, boxsize=1.0 if periodic else None).query_pairs(reach, output_type="ndarray")
+    assert np.all(k < l) and {tuple(p) for p in fresh.tolist()} == set(zip(k.tolist(), l.tolist()))
+    d = centers[k] - centers[l]
+    if periodic:
+        d -= np.rint(d)
+    np.testing.assert_allclose(r, np.hypot(d[:, 0], d[:, 1]), rtol=1e-14, atol=1e-15)
 
 
 def test_study_grid_is_a_fast_size_never_coarser():

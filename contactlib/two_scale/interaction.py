@@ -137,7 +137,6 @@ class PointInteraction:
         m, multiplier, mesh_diagonal = _ewald_mesh(L, alpha, self.E_star, mesh_spacing / alpha)
         self._multiplier, self._mesh = multiplier, m
         self._rows, self._cols, self._gx, self._gy = _gaussian_factors(table.centers, L, m, s, support)
-        self._mesh_area = (L / m) ** 2
         # T_kk: no pair is an asperity with itself (r_c < L/2), so the short-range part adds nothing
         self.diagonal = np.full(self.count, self_term + self._shift + mesh_diagonal)
         self._self_term = self_term
@@ -151,16 +150,14 @@ class PointInteraction:
         if self.method == "direct":
             return _direct_sum(self.centers, forces, self.E_star)
         plan = fft.get_fft((self._mesh, self._mesh), slot="ewald")
-        plan.real[...] = 0.0
+        plan.real.fill(0.0)
         _spread(self._rows, self._cols, self._gx, self._gy, forces, plan.real)
         spectrum = plan.forward()
         spectrum *= self._multiplier
-        long_range = np.empty(self.count)
-        _gather(self._rows, self._cols, self._gx, self._gy, plan.inverse(), long_range)
-        long_range *= self._mesh_area
-        long_range += self._self_term * forces + self._shift * forces.sum()
-        _add_pairs(self._pair_k, self._pair_l, self._pair_w, forces, long_range)
-        return long_range
+        out = np.empty(self.count)
+        _gather(self._rows, self._cols, self._gx, self._gy, plan.inverse(), out)  # the node area is in the multiplier
+        _add_short_range(self._pair_k, self._pair_l, self._pair_w, forces, self._self_term, self._shift, out)
+        return out
 
 
 @functools.lru_cache(maxsize=16)
@@ -179,8 +176,8 @@ def _ewald_mesh(L: float, alpha: float, E_star: float, spacing: float) -> tuple[
     long_range = np.zeros_like(q)
     nz = q > 0
     long_range[nz] = 2.0 / (E_star * q[nz]) * erfc(q[nz] / (2 * alpha))
-    # fftw's inverse is unnormalised: the 1/m^2 goes into the multiplier
-    multiplier = long_range * np.exp((q * s) ** 2) / (m * m)
+    # fftw's inverse is unnormalised: the 1/m^2 goes into the multiplier, and the gathering's node area h^2
+    multiplier = long_range * np.exp((q * s) ** 2) * (h * h / (m * m))
     multiplier.setflags(write=False)
     weight = np.full(long_range.shape, 2.0)
     weight[:, 0] = 1.0
@@ -196,6 +193,19 @@ def _add_pairs(k, l, w, forces, out):
         a, b = k[i], l[i]
         out[a] += w[i] * forces[b]
         out[b] += w[i] * forces[a]
+
+
+@jit
+def _add_short_range(k, l, w, forces, self_term, shift, out):
+    """``out += T_short forces + self_term forces + shift sum(forces)``: the pairs (:func:`_add_pairs`) and
+    the constants, in one pass."""
+    total = 0.0
+    for i in range(forces.size):
+        total += forces[i]
+    total *= shift
+    for i in range(forces.size):
+        out[i] += self_term * forces[i] + total
+    _add_pairs(k, l, w, forces, out)
 
 
 def _gaussian_factors(centers: np.ndarray, L: float, m: int, s: float, support: float):
