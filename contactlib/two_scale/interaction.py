@@ -41,6 +41,7 @@ build but the 1D factors.
 
 from __future__ import annotations
 
+import copy
 import functools
 import math
 
@@ -133,15 +134,34 @@ class PointInteraction:
         self._pair_w = erfc(alpha * r) / (math.pi * self.E_star * r)
         self._shift = -2.0 / (math.sqrt(math.pi) * alpha * L * L * self.E_star)
         self_term = -2.0 * alpha / (math.pi**1.5 * self.E_star)
-        s = GAUSSIAN_WIDTH / alpha
+        self._self_term = self_term
+        self._geometry = (table.centers, L, alpha)
+        self._setup_mesh(mesh_spacing, support)
+        self.attrs = {"interaction": "ewald", "ewald_alpha": alpha, "ewald_cutoff": cutoff, "ewald_mesh": self._mesh,
+                      "ewald_gaussian_width": GAUSSIAN_WIDTH / alpha, "ewald_support": self._gx.shape[1],
+                      "ewald_accuracy": self.accuracy}
+
+    def _setup_mesh(self, mesh_spacing: float, support: float) -> None:
+        """The long-range part's mesh and Gaussians (:func:`ewald_parameters`' ``h alpha`` and support)."""
+        centers, L, alpha = self._geometry
         m, multiplier, mesh_diagonal = _ewald_mesh(L, alpha, self.E_star, mesh_spacing / alpha)
         self._multiplier, self._mesh = multiplier, m
-        self._rows, self._cols, self._gx, self._gy = _gaussian_factors(table.centers, L, m, s, support)
+        self._rows, self._cols, self._gx, self._gy = _gaussian_factors(centers, L, m, GAUSSIAN_WIDTH / alpha, support)
         # T_kk: no pair is an asperity with itself (r_c < L/2), so the short-range part adds nothing
-        self.diagonal = np.full(self.count, self_term + self._shift + mesh_diagonal)
-        self._self_term = self_term
-        self.attrs = {"interaction": "ewald", "ewald_alpha": alpha, "ewald_cutoff": cutoff, "ewald_mesh": m,
-                      "ewald_gaussian_width": s, "ewald_support": self._gx.shape[1], "ewald_accuracy": self.accuracy}
+        self.diagonal = np.full(self.count, self._self_term + self._shift + mesh_diagonal)
+
+    def coarser(self, accuracy: float) -> "PointInteraction":
+        """The same operator with its long-range part (mesh and Gaussians) at the looser ``accuracy`` [1] and
+        the rest shared (the pairs, ``alpha``): for the Newton steps' linear solves, which stop at a relative
+        residual of 1e-2 to 1e-3 and so need no more (their products are 11 of 14 in a macro solve at 10^3
+        asperities), while the residual is measured with this one. Itself where it is no looser."""
+        if self.method != "ewald" or accuracy <= self.accuracy:
+            return self
+        other = copy.copy(self)
+        other.accuracy = float(accuracy)
+        _, mesh_spacing, support = ewald_parameters(other.accuracy)
+        other._setup_mesh(mesh_spacing, support)
+        return other
 
     def __call__(self, forces: np.ndarray) -> np.ndarray:
         """Displacement [length] at each summit due to the point forces [force] on all of them, images

@@ -35,6 +35,14 @@ from .asperities import AsperityTable
 from .interaction import PointInteraction
 
 
+JACOBIAN_ACCURACY = 1e-3
+"""Accuracy of the interaction products inside a Newton step's linear solve, when that solve stops at a relative
+residual of at least this (:meth:`.PointInteraction.coarser`): the step is then as good as with the exact
+products, and the residual, hence the answer, is still measured with the accurate ones. At 10^3 asperities 6 x 6
+Gaussian nodes instead of 9 x 9, a product 0.16 instead of 0.26 ms, for 11 of the 14 products of a solve; the
+Newton iterations and residuals unchanged at 10^3 (coverage 0.05-0.4), 3 x 10^3 and 10^4 asperities."""
+
+
 @dataclass(frozen=True)
 class MacroState:
     """Solution of the macro step.
@@ -138,6 +146,7 @@ def solve_macro(table: AsperityTable, interaction: PointInteraction, law: HertzL
         return F, norm
 
     F, norm = residual_of(d, delta)
+    jacobian = None
     it = 0
     for it in range(1, max_iter + 1):
         if norm <= tol:
@@ -147,9 +156,13 @@ def solve_macro(table: AsperityTable, interaction: PointInteraction, law: HertzL
         # inexact Newton: the linear solve only as tight as the step needs, and never tighter than what
         # brings the residual (quadratic from here) to a tenth of tol (10^4 asperities: 54 -> 34 products)
         rtol = min(1e-2, max(0.1 * norm, 0.1 * tol / norm))
-        a = _newton_solve(interaction, slope, -F, rtol=rtol)
+        operator = interaction
+        if rtol >= JACOBIAN_ACCURACY:  # the linear solve stops above the coarser products' error: they do
+            jacobian = interaction.coarser(JACOBIAN_ACCURACY) if jacobian is None else jacobian
+            operator = jacobian
+        a = _newton_solve(operator, slope, -F, rtol=rtol)
         if load_control:
-            b = _newton_solve(interaction, slope, np.ones_like(d), rtol=rtol)
+            b = _newton_solve(operator, slope, np.ones_like(d), rtol=rtol)
             sb = float(slope @ b)
             if sb <= 0:
                 raise ValueError("mean_pressure: no asperity in contact during the Newton iteration")
