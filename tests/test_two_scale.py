@@ -612,6 +612,43 @@ def test_pair_kernel_and_cached_pairs_match_a_fresh_query_and_the_sparse_matrix(
     assert np.max(np.abs(out - expected)) < 1e-14 * np.max(np.abs(expected))
 
 
+@pytest.mark.parametrize("bad", [np.nan, np.inf, -np.inf])
+def test_non_finite_heights_are_refused(bad):
+    h = ts.random_asperity_field(20, coverage=0.2, nodes_per_spacing=6, seed=0)
+    h.values[3, 4] = bad
+    with pytest.raises(ValueError, match="heights contain NaN or infinite"):
+        ts.asperity_table(h)
+
+
+def test_coarser_products_for_the_newton_steps_leave_the_answer():
+    """:meth:`PointInteraction.coarser`: its products within its accuracy (1e-3) of the accurate ones; the macro
+    solve whose Newton steps use it converges in as many iterations to the answer of one that does not (both
+    residuals measured with the accurate products), within the Newton tolerance."""
+    from contactlib.two_scale import macro
+
+    field = ts.random_asperity_field(500, coverage=0.4, nodes_per_spacing=8, seed=3)
+    table = ts.asperity_table(field)
+    op = ts.PointInteraction(table, E_STAR, accuracy=1e-5)
+    coarse = op.coarser(1e-3)
+    assert coarse.attrs is op.attrs and coarse._mesh < op._mesh and coarse._gx.shape[1] < op._gx.shape[1]
+    assert op.coarser(1e-6) is op
+    forces = np.random.default_rng(3).uniform(0.0, 1.0, table.count)
+    exact = op(forces)
+    assert np.max(np.abs(coarse(forces) - exact)) < 1e-3 * np.max(np.abs(exact))
+    law = ts.HertzLaw(table.radius, E_STAR)
+    approach = float(field.max()) - 0.6 * float(np.mean(table.summit_height))
+    z_top = float(field.max())
+    with_coarse = ts.solve_macro(table, op, law, penetration=approach, z_top=z_top, tol=1e-4)
+    original = macro.JACOBIAN_ACCURACY
+    try:
+        macro.JACOBIAN_ACCURACY = 1.0  # never looser than the linear solve's tolerance: the accurate products
+        without = ts.solve_macro(table, op, law, penetration=approach, z_top=z_top, tol=1e-4)
+    finally:
+        macro.JACOBIAN_ACCURACY = original
+    assert with_coarse.converged and with_coarse.iterations == without.iterations
+    assert np.max(np.abs(with_coarse.force - without.force)) < 1e-4 * float(without.force.max())
+
+
 @pytest.mark.parametrize("count, reach, periodic", [(1000, 0.079, True), (1000, 0.079, False), (30, 0.9, True),
                                                      (30, 0.4, True), (200, 0.4, False), (5, 0.0, True)])
 def test_cell_list_pairs_match_a_kd_tree(count, reach, periodic):

@@ -221,7 +221,8 @@ def solve(
     table = _table_with_grid(asperities, length=length, periodic=periodic, n=n, scale=scale, law=law)
     if law is not None and scale == "two-scale" and table.grid is None:
         raise ValueError("law: the two-scale method with a tabulated law needs the heights on a grid (a DataArray)")
-    z_top = float(table.heights.max()) if table.heights is not None else float(table.summit_height.max())
+    z_top = float(table.summit_height.max()) if table.heights is None else \
+        table.highest if table.highest is not None else float(table.heights.max())
     total_force = None if mean_pressure is None else float(mean_pressure) * table.length**2
 
     start = time.perf_counter()

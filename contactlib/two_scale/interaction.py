@@ -237,13 +237,29 @@ def _gaussian_factors(centers: np.ndarray, L: float, m: int, s: float, support: 
     h = L / m
     reach = support * s / h
     p = int(math.floor(2 * reach + 1e-9)) + 1  # nodes within [c - reach h, c + reach h] along an axis
-    first = np.ceil(centers / h - reach - 1e-9).astype(np.int64)  # (N, 2)
-    offsets = np.arange(p)
-    ix = first[:, 0:1] + offsets[None, :]  # (N, P)
-    iy = first[:, 1:2] + offsets[None, :]
-    gx = np.exp(-((ix * h - centers[:, 0:1]) ** 2) / (2 * s * s)) / (math.sqrt(2 * math.pi) * s)
-    gy = np.exp(-((iy * h - centers[:, 1:2]) ** 2) / (2 * s * s)) / (math.sqrt(2 * math.pi) * s)
-    return ix % m, iy[:, 0] % m, gx, gy
+    n = len(centers)
+    rows, cols = np.empty((n, p), np.int64), np.empty(n, np.int64)
+    gx, gy = np.empty((n, p)), np.empty((n, p))
+    _fill_gaussians(np.ascontiguousarray(centers, dtype=float), h, m, s, reach, rows, cols, gx, gy)
+    return rows, cols, gx, gy
+
+
+@jit
+def _fill_gaussians(centers, h, m, s, reach, rows, cols, gx, gy):
+    """The factors of :func:`_gaussian_factors`, in one pass (numpy's took 0.3 ms at 10^3 asperities)."""
+    n, p = gx.shape
+    norm = 1.0 / (math.sqrt(2 * math.pi) * s)
+    scale = 1.0 / (2 * s * s)
+    for k in range(n):
+        fx = int(math.ceil(centers[k, 0] / h - reach - 1e-9))
+        fy = int(math.ceil(centers[k, 1] / h - reach - 1e-9))
+        cols[k] = fy % m
+        for i in range(p):
+            rows[k, i] = (fx + i) % m
+            dx = (fx + i) * h - centers[k, 0]
+            dy = (fy + i) * h - centers[k, 1]
+            gx[k, i] = norm * math.exp(-dx * dx * scale)
+            gy[k, i] = norm * math.exp(-dy * dy * scale)
 
 
 @jit

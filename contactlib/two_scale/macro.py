@@ -30,6 +30,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .._numba import jit
 from ..solvers.state import dot
 from .asperities import AsperityTable
 from .interaction import PointInteraction
@@ -212,10 +213,10 @@ def solve_contact_compliance(interaction: PointInteraction, slope: np.ndarray, r
         x = np.zeros(active.size)
         full = np.zeros(n)
         z = inverse * r
-        rz = dot(r, z)
-        direction = z
+        rz, rr = dot(r, z), dot(r, r)
+        direction = z.copy()
         for _ in range(10 * active.size + 100):
-            if math.sqrt(dot(r, r)) <= target:
+            if math.sqrt(rr) <= target:
                 break
             if every:
                 t_full = interaction(direction)
@@ -224,14 +225,28 @@ def solve_contact_compliance(interaction: PointInteraction, slope: np.ndarray, r
                 t_full = interaction(full)
             applied = compliance * direction + (t_full if every else t_full[active])
             step = rz / dot(direction, applied)
-            x += step * direction
             product += step * t_full
-            r -= step * applied
-            z = inverse * r
-            rz, rz_old = dot(r, z), rz
-            direction = z + (rz / rz_old) * direction
+            rz_old = rz
+            rr, rz = _cg_update(step, direction, applied, x, r, inverse, z)
+            direction *= rz / rz_old
+            direction += z
         y[active] = x
     return (y, product) if with_product else y
+
+
+@jit
+def _cg_update(step, direction, applied, x, r, inverse, z):
+    """``x += step direction``, ``r -= step applied``, ``z = inverse r`` in one pass; returns ``(r.r, r.z)``
+    (a numpy expression each, with two inner products, cost 40 us an iteration at 10^3 asperities)."""
+    rr = 0.0
+    rz = 0.0
+    for i in range(x.size):
+        x[i] += step * direction[i]
+        r[i] -= step * applied[i]
+        z[i] = inverse[i] * r[i]
+        rr += r[i] * r[i]
+        rz += r[i] * z[i]
+    return rr, rz
 
 
 def _uncoupled_approach(offsets: np.ndarray, law: HertzLaw, total_force: float) -> float:
