@@ -245,14 +245,17 @@ def _solve_in_windows(table: AsperityTable, macro: MacroState, law: HertzLaw, E_
         if own_displacement is None:
             own_displacement = stack(own)
         local_heights = height_stack - (displacement.ravel()[nodes_of] - own_displacement)
+        top = np.where(masks, local_heights, -np.inf).max(axis=(1, 2))
         if force_tol is not None and last is not None:
-            force_change = _next_force_change(local_heights - body_level, own > 0, old_force, *last)
+            contact = own > 0
+            # an asperity out of contact that the body now reaches: the law's force at its overlap
+            arriving = np.where(contact.any(axis=(1, 2)), 0.0, law.force(top - body_level))
+            force_change = _next_force_change(local_heights - body_level, contact, old_force, *last, arriving)
             stop = force_change <= force_tol and force_error <= force_tol
         if stop or it > max_iter:
             displacement = displacement.copy()
             break
         sweeps = it
-        top = np.where(masks, local_heights, -np.inf).max(axis=(1, 2))
         low = np.where(masks, local_heights, np.inf).min(axis=(1, 2))
         touching = np.flatnonzero(top > body_level)
         every = touching.size == table.count  # no copies of the stacks for a subset
@@ -393,7 +396,7 @@ def _coarse_correction(interaction: PointInteraction, slope: np.ndarray, old_for
 
 
 def _next_force_change(interference: np.ndarray, contact: np.ndarray, force: np.ndarray, solved: np.ndarray,
-                       slope: np.ndarray, coarse: np.ndarray) -> float:
+                       slope: np.ndarray, coarse: np.ndarray, arriving: np.ndarray) -> float:
     """Largest change of an asperity force that the next sweep would make, over the largest force [1],
     estimated from its interference ``interference`` (N, w, w) [length] before its local solves.
 
@@ -401,11 +404,11 @@ def _next_force_change(interference: np.ndarray, contact: np.ndarray, force: np.
     others' new pressures (and the approach's step). Each contact answers a shift that is smooth on it
     (the far field of the others) like a rigid one, with its stiffness ``slope`` [force/length]: the mean
     shift over its contact nodes ``contact`` times the stiffness, less the coarse step's change ``coarse``
-    [force] already in the forces ``force`` [force]. The local solves' own error is not in it: they run ten
-    times tighter."""
+    [force] already in the forces ``force`` [force]; an asperity out of contact gains ``arriving`` [force].
+    The local solves' own error is not in it: they run ten times tighter."""
     nodes = np.count_nonzero(contact, axis=(1, 2))
     shift = np.einsum("kij,kij->k", interference - solved, contact)
-    predicted = slope * shift / np.maximum(nodes, 1) - coarse
+    predicted = slope * shift / np.maximum(nodes, 1) - coarse + arriving
     largest = float(force.max()) if force.size else 0.0
     return float(np.max(np.abs(predicted))) / largest if largest > 0 else 0.0
 
