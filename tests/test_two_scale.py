@@ -394,6 +394,10 @@ def test_force_stop_estimates_the_next_sweep():
         assert 1e-4 < actual < 1e-2  # a change worth estimating (2.2e-3, 1.7e-3; estimates 2.3e-3, 2.1e-3)
         assert one.force_change == pytest.approx(actual, rel=0.25)
         total = float(one.force.sum())
+    # under tol, force_change is the last sweep's own change
+    on_tol = ts.solve_micro(table, macro, law, E_STAR, interaction, max_iter=2, z_top=z_top, total_force=total,
+                            tol=1e-6)
+    assert on_tol.iterations == 2 and 1e-5 < on_tol.force_change < 1e-2
 
 
 def test_stacked_local_solves_match_the_single_window_solver():

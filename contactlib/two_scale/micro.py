@@ -310,6 +310,8 @@ def _solve_in_windows(table: AsperityTable, macro: MacroState, law: HertzLaw, E_
         if total_force is not None and total_force > 0:
             force_error = abs(float(new_force.sum()) - total_force) / total_force
         if force_tol is None:
+            largest = float(np.max(new_force)) if new_force.size else 0.0
+            force_change = float(np.max(np.abs(new_force - old_force))) / largest if largest > 0 else 0.0
             stop = change <= tol and force_error <= tol
         else:  # the interference the sweep solved for; the coarse step's change of the forces on top of it
             solved_interference = local_heights - body_level
