@@ -39,7 +39,6 @@ coverage 0.05: 4e-3 from the macro step, then 4e-4, 2e-5, 2e-6).
 
 from __future__ import annotations
 
-import copy
 import functools
 import math
 from dataclasses import dataclass
@@ -419,12 +418,10 @@ def _window_stack_operator(window: int, spacing: float, E_star: float, single: b
     """:class:`.local.WindowStack` with its dense matrix kept (about 1 ms to build; repeated solves, a
     study's loads or a transient's steps, have the same windows) and scratch buffers of its own (a copy:
     solves in threads do not share them)."""
-    operator = copy.copy(_cached_window_stack(window, spacing, E_star, single))
-    operator._buffers = (np.empty((0, 0), np.float32),) * 2
-    return operator
+    return _cached_window_stack(window, spacing, E_star, single).with_own_scratch()
 
 
-@functools.lru_cache(maxsize=8)
+@functools.lru_cache(maxsize=4)
 def _cached_window_stack(window: int, spacing: float, E_star: float, single: bool) -> WindowStack:
     return WindowStack(window, spacing, E_star, single=single)
 
