@@ -371,6 +371,35 @@ def test_force_tolerance_stops_within_it_of_the_full_solver():
         ts.solve(field, E=E, nu=NU, penetration=approach, force_tol=0.0)
 
 
+def test_force_stop_estimates_the_next_sweep():
+    """``force_tol`` stops on the change the next sweep would make, estimated from the convolution that
+    sweep (or the returned fields) needs: each contact's mean interference shift times its Hertz stiffness.
+    Against the change that sweep does make (tight local solves, so that it is the coupling's alone), under
+    both displacement and load control (300 sagging asperities, coverage 0.4: the macro start 1e-2 off)."""
+    field = ts.random_asperity_field(300, coverage=0.4, nodes_per_spacing=20, seed=1)
+    table = ts.asperity_table(field)
+    interaction = ts.PointInteraction(table, E_STAR)
+    law = ts.HertzLaw(table.radius, E_STAR)
+    z_top = float(field.max())
+    approach = z_top - 0.6 * float(np.mean(table.summit_height))
+    total = None  # displacement control, then load control at the force it gave
+    for _ in range(2):
+        macro = ts.solve_macro(table, interaction, law, z_top=z_top, tol=1e-10,
+                               **({"penetration": approach} if total is None else {"total_force": total}))
+        kw = dict(z_top=z_top, total_force=total, tol=1e-6, force_tol=1e-6)
+        one = ts.solve_micro(table, macro, law, E_STAR, interaction, max_iter=1, **kw)
+        two = ts.solve_micro(table, macro, law, E_STAR, interaction, max_iter=2, **kw)
+        assert one.iterations == 1 and two.iterations == 2 and not one.converged
+        actual = np.max(np.abs(two.force - one.force)) / one.force.max()
+        assert 1e-4 < actual < 1e-2  # a change worth estimating (2.2e-3, 1.7e-3; estimates 2.3e-3, 2.1e-3)
+        assert one.force_change == pytest.approx(actual, rel=0.25)
+        total = float(one.force.sum())
+    # under tol, force_change is the last sweep's own change
+    on_tol = ts.solve_micro(table, macro, law, E_STAR, interaction, max_iter=2, z_top=z_top, total_force=total,
+                            tol=1e-6)
+    assert on_tol.iterations == 2 and 1e-5 < on_tol.force_change < 1e-2
+
+
 def test_stacked_local_solves_match_the_single_window_solver():
     """The micro scale's vectorised constrained CG (all windows at once) against contactlib's own
     Polonsky-Keer solver on each window alone: caps of different radii, offsets and approaches."""
