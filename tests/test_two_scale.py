@@ -641,6 +641,25 @@ def test_pair_kernel_and_cached_pairs_match_a_fresh_query_and_the_sparse_matrix(
     assert np.max(np.abs(out - expected)) < 1e-14 * np.max(np.abs(expected))
 
 
+def test_finite_contact_size_halves_the_macro_error_of_a_dense_field():
+    """The finite-size term of the interaction (:class:`contactlib.two_scale.macro.FiniteSize`) against the full
+    solver at tol 1e-8, 200 asperities at coverage 0.4 (nearly touching): the largest asperity-force error
+    1.2e-2 -> 6.6e-3 of the largest force, the total force's 1.3e-2 -> 4.1e-3 (measured)."""
+    field = ts.random_asperity_field(200, coverage=0.4, nodes_per_spacing=22, seed=0)
+    table = ts.asperity_table(field)
+    approach = float(field.max()) - 0.6 * float(np.mean(table.summit_height))
+    full = contactlib.solve(field, E=E, nu=NU, penetration=approach, tol=1e-8)
+    reference = ts.asperity_forces(full.pressure.values, table)
+    errors = {}
+    for finite_size in (False, True):
+        out = ts.solve(field, E=E, nu=NU, penetration=approach, scale="macro", fields=False, finite_size=finite_size)
+        assert out.attrs["finite_size_correction"] == int(finite_size)
+        errors[finite_size] = (np.max(np.abs(out.force.values - reference)) / reference.max(),
+                               abs(out.force.values.sum() / reference.sum() - 1))
+    assert errors[False][0] > 1e-2 and errors[True][0] < 7e-3
+    assert errors[False][1] > 1e-2 and errors[True][1] < 5e-3
+
+
 @pytest.mark.parametrize("bad", [np.nan, np.inf, -np.inf])
 def test_non_finite_heights_are_refused(bad):
     h = ts.random_asperity_field(20, coverage=0.2, nodes_per_spacing=6, seed=0)

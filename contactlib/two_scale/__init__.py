@@ -24,7 +24,7 @@ from .asperities import AsperityTable, asperity_forces, asperity_table
 from .fields import random_asperity_field
 from .interaction import ACCURACY, PointInteraction
 from .laws import TabulatedLaw, tabulated_law
-from .macro import HertzLaw, MacroState, solve_macro
+from .macro import FiniteSize, HertzLaw, MacroState, solve_macro
 from .micro import MicroState, hertz_pressure_field, solve_micro, window_size
 from .transient import solve_transient
 
@@ -100,6 +100,7 @@ def solve(
     tol: float = 1e-6,
     force_tol: float | None = None,
     macro_tol: float | None = None,
+    finite_size: bool = True,
     max_iter: int = 200,
     fields: bool = True,
     length_unit: str = "m",
@@ -157,6 +158,11 @@ def solve(
         the largest force against the full solver). Default for ``"two-scale"``: 1e-2 of ``force_tol``
         (else of ``tol``), between 1e-8 and 1e-4 (:data:`START_TOL_FACTOR`): the macro forces only start the
         sweeps, whose answer does not depend on them.
+    finite_size : bool
+        Macro: add the finite size of the Hertz contacts to the point-load interaction
+        (:class:`.macro.FiniteSize`; with the default Hertz law only): at 10^3 asperities it halves the macro
+        step's error at coverage 0.4 (1.1e-2 -> 5.3e-3 of the largest force) at no extra product.
+        :func:`solve_transient` does not apply it yet.
     max_iter : int
         Newton iterations (macro) and outer iterations (two-scale) at most.
     fields : bool
@@ -229,15 +235,16 @@ def solve(
     accuracy = min(max(INTERACTION_ACCURACY_FACTOR * macro_tol, ACCURACY), INTERACTION_ACCURACY_MAX)
     interaction = PointInteraction(table, E_star, accuracy=accuracy)
     law = HertzLaw(table.radius, E_star) if law is None else law
+    correction = FiniteSize(table, E_star) if finite_size and isinstance(law, HertzLaw) else None  # Hertz's pressure
     macro = solve_macro(table, interaction, law, penetration=penetration, total_force=total_force, z_top=z_top,
-                        tol=macro_tol, max_iter=int(max_iter))
+                        tol=macro_tol, max_iter=int(max_iter), finite_size=correction)
     macro_wall = time.perf_counter() - start
     params = {"scale": scale, "E": float(E), "nu": float(nu), "E_star": E_star, "periodic": int(table.periodic),
               "load_control": "mean_pressure" if mean_pressure is not None else "penetration", "tol": tol,
               "force_tol": float("nan") if force_tol is None else force_tol,
               "macro_tol": macro_tol, "max_iter": int(max_iter), "single_asperity_law": "hertz",
               **(law.attrs if isinstance(law, TabulatedLaw) else {}),
-              "macro_iterations": macro.iterations, "macro_residual": macro.residual, "macro_wall_time": macro_wall,
+              "finite_size_correction": int(correction is not None), "macro_iterations": macro.iterations, "macro_residual": macro.residual, "macro_wall_time": macro_wall,
               "contactlib_version": __version__, "window_lengths": [table.length, table.length],
               "Conventions": "CF-1.10", **interaction.attrs}
     if not macro.converged:

@@ -8,14 +8,16 @@ Periodic: the sum over the images of every asperity, zero-mean as contactlib's p
 (its Fourier multiplier ``2/(E*|q|)`` is set to 0 at ``q = 0``), by **Ewald summation**
 (split ``1/r = erfc(alpha r)/r + erf(alpha r)/r``):
 
-* the short-range part ``erfc(alpha r) / (pi E* r)`` over neighbours within ``r_c = 3.6 / alpha``
-  (a pair list from the table's one k-d tree query, summed by a numba kernel: no sparse matrix to build;
-  ``erfc(3.6) < 4e-7``);
+* the short-range part ``erfc(alpha r) / (pi E* r)`` over neighbours within ``r_c``, ``alpha r_c =
+  erfcinv(accuracy)`` (3.77 at the default 1e-7, 3.12 at 1e-5), a pair list from the table's one
+  cell-list query, summed by a numba kernel (no sparse matrix to build);
 * the smooth long-range part in Fourier space, ``(2/(E* q)) erfc(q / (2 alpha))``, evaluated by FFT on a
   mesh after spreading the forces with Gaussians and gathering with the same Gaussians ("spectral
   Ewald", Lindbo & Tornberg, J. Comput. Phys. 229 (2010) 8994, doi:10.1016/j.jcp.2010.08.026); the
   Gaussian's transform is divided out on the mesh, so the only errors are the truncations, all
-  exponentially small;
+  exponentially small, each set to the requested ``accuracy`` (:func:`ewald_parameters`): the macro solve
+  asks for a tenth of its Newton tolerance, and its Newton steps' linear solves for 1e-3
+  (:meth:`PointInteraction.coarser`);
 * the constants: ``-2 alpha / (pi^(3/2) E*)`` on the diagonal (the self part of the long-range sum
   that the point load itself, Hertz's law, already holds) and ``-2 / (sqrt(pi) alpha A E*)`` for every
   pair, the dropped ``q = 0`` term of the short-range part.

@@ -32,7 +32,7 @@ import numpy as np
 
 from .._numba import jit
 from ..solvers.state import dot
-from .asperities import AsperityTable
+from .asperities import NEIGHBOUR_SPACINGS, AsperityTable
 from .interaction import PointInteraction
 
 
@@ -100,9 +100,61 @@ class HertzLaw:
         return 2.0 * self.E_star * np.cbrt(3.0 * np.maximum(force, 0.0) * self.radius / (4.0 * self.E_star))
 
 
+class FiniteSize:
+    """The finite size of the contacts in the interaction of Hertz contacts (symmetric, short-ranged).
+
+    The displacement at ``l`` due to Hertz's pressure of radius ``a_k`` (``<rho^2> = 2 a_k^2 / 5``), averaged
+    over ``l``'s contact with the weight of its force's sensitivity (a flat punch of radius ``a_l``:
+    ``<rho^2> = 2 a_l^2 / 3``), is ``(P_k / (pi E* r)) [1 + a_k^2/(10 r^2) + a_l^2/(6 r^2) + O(r^-4)]`` (the 2D
+    angular mean of ``1/|r - rho|`` is ``(1/r)(1 + rho^2/(4 r^2) + ...)``). Symmetrised, so that the Newton
+    steps' system stays SPD: ``(a_k^2 + a_l^2) (2/15) / r^2``. Falling like ``r^-3``, it is summed over the
+    neighbour pairs within ``reach`` (those of the Ewald sum's short-range part); the farther ones, about a
+    third of it, spread nearly evenly and are left out. At 10^3 asperities (coverage 0.2 and 0.4) it takes the
+    macro step's largest asperity-force error from 6.1e-3 and 1.1e-2 to 4.9e-3 and 5.2e-3 of the largest force,
+    the total force's from 4.3e-3 and 1.3e-2 to 1.5e-3 and 3.9e-3 (against the full solver at tol 1e-8)."""
+
+    def __init__(self, table: AsperityTable, E_star: float):
+        reach = min(NEIGHBOUR_SPACINGS * table.length / math.sqrt(table.count), 0.45 * table.length)
+        k, l, r = table.neighbour_pairs(reach)
+        self._k, self._l = k, l
+        self._g = (2.0 / 15.0) / (math.pi * E_star * r**3)
+
+    def __call__(self, radius_squared: np.ndarray, forces: np.ndarray) -> np.ndarray:
+        """The displacement at each summit [length] due to the finite size of the others' contacts (squared
+        radii [length^2]) carrying ``forces`` [force]."""
+        out = np.zeros(forces.size)
+        _add_finite_size(self._k, self._l, self._g, radius_squared, forces, out)
+        return out
+
+
+class _Corrected:
+    """``T + S(a)``: the interaction with the finite-size term at fixed contact radii, for the Newton steps."""
+
+    def __init__(self, interaction, finite_size: FiniteSize, radius_squared: np.ndarray):
+        self.interaction, self.finite_size, self.radius_squared = interaction, finite_size, radius_squared
+        self.diagonal = interaction.diagonal
+
+    def __call__(self, forces: np.ndarray) -> np.ndarray:
+        out = self.interaction(forces)
+        _add_finite_size(self.finite_size._k, self.finite_size._l, self.finite_size._g, self.radius_squared, forces,
+                         out)
+        return out
+
+
+@jit
+def _add_finite_size(k, l, g, a2, forces, out):
+    """``out += S(a) forces`` over the pairs ``(k, l)`` with ``g = (2/15) / (pi E* r^3)``."""
+    for i in range(k.size):
+        a, b = k[i], l[i]
+        w = g[i] * (a2[a] + a2[b])
+        out[a] += w * forces[b]
+        out[b] += w * forces[a]
+
+
 def solve_macro(table: AsperityTable, interaction: PointInteraction, law: HertzLaw, *,
                 penetration: float | None = None, total_force: float | None = None, z_top: float | None = None,
-                known_displacement: np.ndarray | None = None, tol: float = 1e-10, max_iter: int = 100) -> MacroState:
+                known_displacement: np.ndarray | None = None, tol: float = 1e-10, max_iter: int = 100,
+                finite_size: FiniteSize | None = None) -> MacroState:
     """Solve eq. 3 of the seed for the asperity forces, under displacement or load control.
 
     Parameters
@@ -124,6 +176,9 @@ def solve_macro(table: AsperityTable, interaction: PointInteraction, law: HertzL
         Target of :attr:`MacroState.residual`.
     max_iter : int
         Newton iterations at most; the state returned says whether it converged.
+    finite_size : FiniteSize, optional
+        Add the finite size of the contacts to the point-load interaction (Hertz contacts; the Newton steps
+        take it at the current contact radii, the residual at the exact ones).
     """
     z_top = float(table.summit_height.max()) if z_top is None else float(z_top)
     # a known displacement lowers the summits it lifts the body above: the same problem, shifted heights
@@ -140,7 +195,10 @@ def solve_macro(table: AsperityTable, interaction: PointInteraction, law: HertzL
     scale = max(float(np.max(np.abs(delta + z - z_top))), 1e-300)
 
     def residual_of(d, delta):
-        F = d - (delta + z - z_top) + interaction(law.force(d))
+        forces = law.force(d)
+        F = d - (delta + z - z_top) + interaction(forces)
+        if finite_size is not None:
+            F += finite_size(law.radius * np.maximum(d, 0.0), forces)
         norm = float(np.max(np.abs(F))) / scale
         if load_control:
             norm = max(norm, abs(float(law.force(d).sum()) - total_force) / total_force)
@@ -161,6 +219,8 @@ def solve_macro(table: AsperityTable, interaction: PointInteraction, law: HertzL
         if rtol >= JACOBIAN_ACCURACY:  # the linear solve stops above the coarser products' error: they do
             jacobian = interaction.coarser(JACOBIAN_ACCURACY) if jacobian is None else jacobian
             operator = jacobian
+        if finite_size is not None:
+            operator = _Corrected(operator, finite_size, law.radius * np.maximum(d, 0.0))
         a = _newton_solve(operator, slope, -F, rtol=rtol)
         if load_control:
             b = _newton_solve(operator, slope, np.ones_like(d), rtol=rtol)
