@@ -73,19 +73,25 @@ class AsperityTable:
         z, R = self.summit_height, self.radius
         return np.sqrt(z * (2 * R - z))
 
+    @property
+    def neighbour_reach(self) -> float:
+        """The Ewald sum's real-space reach [length]: :data:`NEIGHBOUR_SPACINGS` mean spacings, below half the
+        window (one image per pair at most)."""
+        return min(NEIGHBOUR_SPACINGS * (self.length / math.sqrt(self.count)), 0.45 * self.length)
+
     def neighbour_pairs(self, distance: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """Pairs ``(k, l)``, ``k < l``, of summits closer than ``distance`` (nearest periodic image),
         and their distances [length]. The widest query is kept on the table and the narrower ones are
         read from it: the overlap check and the Ewald sum's neighbours then cost one k-d tree query."""
         cached = self.__dict__.get("_pairs")
-        if cached is None or cached[0] < distance:
+        if cached is None or cached[0] < distance * (1 - 1e-12):  # a reach computed otherwise: rounding
             # the validation's query asks for at least the Ewald sum's neighbours, which come next
-            reach = max(distance, NEIGHBOUR_SPACINGS * (self.length / math.sqrt(self.count)))  # as the Ewald cutoff
+            reach = max(distance, self.neighbour_reach)
             k, l, r = cell_pairs(self.centers, self.length, reach, self.periodic)
             cached = (reach, k, l, r)
             self.__dict__["_pairs"] = cached  # a cache, not a field: the dataclass stays frozen
         reach, k, l, r = cached
-        if distance >= reach:
+        if distance >= reach * (1 - 1e-12):
             return k, l, r
         keep = r <= distance
         return k[keep], l[keep], r[keep]

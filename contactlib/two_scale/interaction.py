@@ -125,14 +125,14 @@ class PointInteraction:
 
     def _setup_ewald(self, table: AsperityTable) -> None:
         L, N = table.length, table.count
-        spacing = L / math.sqrt(N)
-        cutoff = min(EWALD_NEIGHBOURS * spacing, 0.45 * L)  # r_c < L/2: one image per pair at most
+        cutoff = table.neighbour_reach if EWALD_NEIGHBOURS == NEIGHBOUR_SPACINGS else \
+            min(EWALD_NEIGHBOURS * (L / math.sqrt(N)), 0.45 * L)  # r_c < L/2: one image per pair at most
         cutoff_factor, mesh_spacing, support = ewald_parameters(self.accuracy)
         alpha = cutoff_factor / cutoff
         self.method = "ewald"
         k, l, r = table.neighbour_pairs(cutoff)
         # the short-range pairs as a list for a numba kernel: no sparse matrix to sort and build (0.7 ms at 10^3)
-        self._pair_k, self._pair_l = k.astype(np.int64), l.astype(np.int64)
+        self._pair_k, self._pair_l = np.asarray(k, dtype=np.int64), np.asarray(l, dtype=np.int64)  # the table's
         self._pair_w = erfc(alpha * r) / (math.pi * self.E_star * r)
         self._shift = -2.0 / (math.sqrt(math.pi) * alpha * L * L * self.E_star)
         self_term = -2.0 * alpha / (math.pi**1.5 * self.E_star)
