@@ -105,10 +105,10 @@ class AsperityTable:
 
 
 def _heights_of(asperities: xr.DataArray) -> tuple[np.ndarray, Grid, float]:
-    """The heights of a 2D DataArray, their grid and the highest [length], as :func:`contactlib.inputs.grid_of` reads them (window
-    length = coordinate step x points), with its checks: finiteness by the extremes rather than a mask, the
-    highest kept for the approach, and the coordinates from their variables rather than as DataArrays (0.6 ->
-    0.2 ms on 700^2)."""
+    """The heights of a 2D DataArray, their grid and the highest [length], as :func:`contactlib.inputs.grid_of`
+    reads them (window length = coordinate step x points), with its checks: finiteness by the extremes rather
+    than a mask, the highest kept for the approach, and the coordinates from their variables rather than as
+    DataArrays (0.6 -> 0.25 ms on 700^2)."""
     values = np.ascontiguousarray(asperities.values, dtype=float)
     lengths = []
     for d, size in zip(asperities.dims, values.shape):
