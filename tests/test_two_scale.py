@@ -636,7 +636,7 @@ def test_pair_kernel_and_cached_pairs_match_a_fresh_query_and_the_sparse_matrix(
     matrix = sparse.coo_matrix((np.r_[w, w], (np.r_[k, l], np.r_[l, k])), shape=(400, 400)).tocsr()
     forces = np.random.default_rng(1).uniform(0.0, 1.0, 400)
     out = np.zeros(400)
-    interaction_module._add_pairs(op._pair_k, op._pair_l, op._pair_w, forces, out)
+    interaction_module.add_pair_products(op._pair_k, op._pair_l, op._pair_w, forces, out)
     expected = matrix @ forces
     assert np.max(np.abs(out - expected)) < 1e-14 * np.max(np.abs(expected))
 

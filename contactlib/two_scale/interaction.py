@@ -165,6 +165,16 @@ class PointInteraction:
         other._setup_mesh(mesh_spacing, support)
         return other
 
+    def with_pair_weights(self, k: np.ndarray, l: np.ndarray, weights: np.ndarray) -> "PointInteraction | None":
+        """The same operator with ``weights`` [length/force] added to the short-range weights of the pairs
+        ``(k, l)``, when these are its own pair arrays (the table's one neighbour query): one pair loop a product
+        for a pair term such as :class:`.macro.FiniteSize`. None otherwise."""
+        if self.method != "ewald" or k is not self._pair_k or l is not self._pair_l:
+            return None
+        other = copy.copy(self)
+        other._pair_w = self._pair_w + weights
+        return other
+
     def __call__(self, forces: np.ndarray) -> np.ndarray:
         """Displacement [length] at each summit due to the point forces [force] on all of them, images
         included, the singular self term excluded."""
@@ -209,7 +219,7 @@ def _ewald_mesh(L: float, alpha: float, E_star: float, spacing: float) -> tuple[
 
 
 @jit
-def _add_pairs(k, l, w, forces, out):
+def add_pair_products(k, l, w, forces, out):
     """``out += T_short forces`` from the symmetric pair list ``(k, l, w)``, ``k < l``."""
     for i in range(k.size):
         a, b = k[i], l[i]
@@ -219,7 +229,7 @@ def _add_pairs(k, l, w, forces, out):
 
 @jit
 def _add_short_range(k, l, w, forces, self_term, shift, out):
-    """``out += T_short forces + self_term forces + shift sum(forces)``: the pairs (:func:`_add_pairs`) and
+    """``out += T_short forces + self_term forces + shift sum(forces)``: the pairs (:func:`add_pair_products`) and
     the constants, in one pass."""
     total = 0.0
     for i in range(forces.size):
@@ -227,7 +237,7 @@ def _add_short_range(k, l, w, forces, self_term, shift, out):
     total *= shift
     for i in range(forces.size):
         out[i] += self_term * forces[i] + total
-    _add_pairs(k, l, w, forces, out)
+    add_pair_products(k, l, w, forces, out)
 
 
 def _gaussian_factors(centers: np.ndarray, L: float, m: int, s: float, support: float):

@@ -25,7 +25,6 @@ gradients with the matrix-free ``T``; then ``dd = -F - T y``. Load control adds 
 
 from __future__ import annotations
 
-import copy
 import math
 from dataclasses import dataclass
 
@@ -34,7 +33,7 @@ import numpy as np
 from .._numba import jit
 from ..solvers.state import dot
 from .asperities import AsperityTable
-from .interaction import PointInteraction
+from .interaction import PointInteraction, add_pair_products
 
 
 JACOBIAN_ACCURACY = 1e-3
@@ -119,45 +118,37 @@ class FiniteSize:
         self._k, self._l = k, l
         self._g = (2.0 / 15.0) / (math.pi * E_star * r**3)
 
+    def weights(self, radius_squared: np.ndarray) -> np.ndarray:
+        """The term's weight of each neighbour pair [length/force] at the contacts' squared radii [length^2]."""
+        return self._g * (radius_squared[self._k] + radius_squared[self._l])
+
     def corrected(self, interaction, radius_squared: np.ndarray):
         """``T + S(a)`` at fixed contact radii: for an Ewald interaction over the same pairs, a copy with the term
         in its pair weights (one pair loop a product, not two), else a wrapper."""
-        if getattr(interaction, "_pair_k", None) is self._k:
-            other = copy.copy(interaction)
-            other._pair_w = interaction._pair_w + self._g * (radius_squared[self._k] + radius_squared[self._l])
-            return other
-        return _Corrected(interaction, self, radius_squared)
+        weights = self.weights(radius_squared)
+        combined = interaction.with_pair_weights(self._k, self._l, weights) \
+            if isinstance(interaction, PointInteraction) else None
+        return combined if combined is not None else _Corrected(interaction, self._k, self._l, weights)
 
     def __call__(self, radius_squared: np.ndarray, forces: np.ndarray) -> np.ndarray:
         """The displacement at each summit [length] due to the finite size of the others' contacts (squared
         radii [length^2]) carrying ``forces`` [force]."""
         out = np.zeros(forces.size)
-        _add_finite_size(self._k, self._l, self._g, radius_squared, forces, out)
+        add_pair_products(self._k, self._l, self.weights(radius_squared), forces, out)
         return out
 
 
 class _Corrected:
-    """``T + S(a)``: the interaction with the finite-size term at fixed contact radii, for the Newton steps."""
+    """``T + S(a)``: the interaction with the finite-size pair weights at fixed contact radii, for the Newton steps."""
 
-    def __init__(self, interaction, finite_size: FiniteSize, radius_squared: np.ndarray):
-        self.interaction, self.finite_size, self.radius_squared = interaction, finite_size, radius_squared
+    def __init__(self, interaction, k: np.ndarray, l: np.ndarray, weights: np.ndarray):
+        self.interaction, self._pairs = interaction, (k, l, weights)
         self.diagonal = interaction.diagonal
 
     def __call__(self, forces: np.ndarray) -> np.ndarray:
         out = self.interaction(forces)
-        _add_finite_size(self.finite_size._k, self.finite_size._l, self.finite_size._g, self.radius_squared, forces,
-                         out)
+        add_pair_products(*self._pairs, forces, out)
         return out
-
-
-@jit
-def _add_finite_size(k, l, g, a2, forces, out):
-    """``out += S(a) forces`` over the pairs ``(k, l)`` with ``g = (2/15) / (pi E* r^3)``."""
-    for i in range(k.size):
-        a, b = k[i], l[i]
-        w = g[i] * (a2[a] + a2[b])
-        out[a] += w * forces[b]
-        out[b] += w * forces[a]
 
 
 def solve_macro(table: AsperityTable, interaction: PointInteraction, law: HertzLaw, *,
