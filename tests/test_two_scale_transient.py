@@ -90,8 +90,7 @@ def test_relaxation_at_constant_penetration_is_exact(scale):
     times = np.concatenate([[0.0], np.geomspace(0.01, 10.0, 6)])
     delta = 1e-3
     out = ts.solve_transient(h, material=m, times=times, penetration=delta, scale=scale)
-    elastic = ts.solve(h, E=m.E0, nu=NU, penetration=delta, scale=scale, fields=False, macro_tol=1e-10,
-                       finite_size=False)  # the stepper's model
+    elastic = ts.solve(h, E=m.E0, nu=NU, penetration=delta, scale=scale, fields=False, macro_tol=1e-10)  # the stepper's model
     ratio = out.mean_pressure.values / (float(elastic.mean_pressure) * m.relaxation(times) / m.E0)
     np.testing.assert_allclose(ratio, 1.0, rtol=1e-5 if scale == "two-scale" else 1e-9)
     forces = out.force.values / (m.relaxation(times)[:, None] / m.E0)
@@ -102,12 +101,11 @@ def test_relaxation_at_constant_penetration_is_exact(scale):
 def test_elastic_body_does_not_creep():
     h = few_spheres()
     out = ts.solve_transient(h, E=1.0, nu=NU, times=[0.0, 1.0, 5.0], mean_pressure=2e-5, scale="macro")
-    elastic = ts.solve(h, E=1.0, nu=NU, mean_pressure=2e-5, scale="macro", macro_tol=1e-10,
-                       finite_size=False)  # the stepper's default and model
+    elastic = ts.solve(h, E=1.0, nu=NU, mean_pressure=2e-5, scale="macro", macro_tol=1e-10)  # the stepper's default and model
     np.testing.assert_allclose(out.force.values, np.broadcast_to(elastic.force.values, (3, 5)), rtol=1e-9, atol=1e-15)
     relaxed = ts.solve_transient(h, material=sls(), times=[0.0, 1.0], mean_pressure=2e-5, scale="macro",
                                  initial="relaxed")
-    at_E0 = ts.solve(h, E=1.0, nu=NU, mean_pressure=2e-5, scale="macro", macro_tol=1e-10, finite_size=False)
+    at_E0 = ts.solve(h, E=1.0, nu=NU, mean_pressure=2e-5, scale="macro", macro_tol=1e-10)
     np.testing.assert_allclose(relaxed.force.values, np.broadcast_to(at_E0.force.values, (2, 5)), rtol=1e-8,
                                atol=1e-15)
 

@@ -162,7 +162,7 @@ def solve(
         Macro: add the finite size of the Hertz contacts to the point-load interaction
         (:class:`.macro.FiniteSize`; with the default Hertz law only): at 10^3 asperities it halves the macro
         step's error at coverage 0.4 (1.1e-2 -> 5.3e-3 of the largest force) at no extra product.
-        :func:`solve_transient` does not apply it yet.
+        :func:`solve_transient` applies it at each step's effective modulus.
     max_iter : int
         Newton iterations (macro) and outer iterations (two-scale) at most.
     fields : bool

@@ -47,7 +47,7 @@ from ..transient import INITIAL_STATES, MODELS_KEPT, _history, _times
 from .asperities import AsperityTable, asperity_forces
 from .interaction import PointInteraction
 from .laws import TabulatedLaw
-from .macro import HertzLaw, MacroState, solve_macro
+from .macro import FiniteSize, HertzLaw, MacroState, solve_macro
 from .micro import solve_micro
 
 SCALES = ("macro", "two-scale")
@@ -72,6 +72,7 @@ def solve_transient(
     n: int | None = None,
     tol: float = 1e-6,
     macro_tol: float = 1e-10,
+    finite_size: bool = True,
     max_iter: int = 200,
     length_unit: str = "m",
     pressure_unit: str = "Pa",
@@ -104,8 +105,9 @@ def solve_transient(
         (:meth:`~contactlib.two_scale.TabulatedLaw.at_modulus`). Lee and Radok's argument behind the
         per-asperity memory holds for any axisymmetric shape whose contact does not recede.
     initial : {"unloaded", "relaxed"}
-    periodic, length, n, tol, macro_tol, max_iter
-        As :func:`contactlib.two_scale.solve`, for every step.
+    periodic, length, n, tol, macro_tol, finite_size, max_iter
+        As :func:`contactlib.two_scale.solve`, for every step (``finite_size``: the macro step's finite-size
+        term of the Hertz contacts, at the step's effective modulus).
 
     Returns
     -------
@@ -146,7 +148,8 @@ def solve_transient(
     table = _table_with_grid(asperities, length=length, periodic=periodic, n=n, scale=scale, law=law)
     if law is not None and scale == "two-scale" and table.grid is None:
         raise ValueError("law: the two-scale method with a tabulated law needs the heights on a grid (a DataArray)")
-    stepper = _Stepper(table, material, scale, control, float(tol), float(macro_tol), int(max_iter), law)
+    stepper = _Stepper(table, material, scale, control, float(tol), float(macro_tol), int(max_iter), law,
+                       finite_size=bool(finite_size))
     record = _Record(table, times)
     start = _time.perf_counter()
     try:
@@ -172,8 +175,9 @@ class _Stepper:
     the grid (two-scale)."""
 
     def __init__(self, table: AsperityTable, material, scale: str, control: str, tol: float, macro_tol: float,
-                 max_iter: int, law: TabulatedLaw | None = None):
+                 max_iter: int, law: TabulatedLaw | None = None, finite_size: bool = True):
         self.table, self.material, self.scale, self.control, self.law = table, material, scale, control, law
+        self.finite_size = finite_size and law is None  # the term is Hertz's pressure's
         self.tol, self.macro_tol, self.max_iter = tol, macro_tol, max_iter
         self.z_top = float(table.heights.max()) if table.heights is not None else float(table.summit_height.max())
         self.area = table.length**2
@@ -194,8 +198,8 @@ class _Stepper:
         return np.maximum(self.pressure + (self.pressure - self.previous) * (self.dt / self.last_dt), 0.0)
 
     def model(self, E_eff: float):
-        """``(E*, interaction, law, compliance)`` at modulus ``E_eff``; the last few kept (the Ewald setup
-        is the costly part)."""
+        """``(E*, interaction, law, compliance, finite_size)`` at modulus ``E_eff``; the last few kept (the Ewald
+        setup is the costly part)."""
         if E_eff not in self._models:
             if len(self._models) >= MODELS_KEPT:
                 self._models.pop(next(iter(self._models)))
@@ -203,7 +207,8 @@ class _Stepper:
             compliance = None if self.scale == "macro" else \
                 Compliance(self.table.grid, E_star=E_star, periodic=self.table.periodic)
             law = HertzLaw(self.table.radius, E_star) if self.law is None else self.law.at_modulus(E_star)
-            self._models[E_eff] = (E_star, PointInteraction(self.table, E_star), law, compliance)
+            finite_size = FiniteSize(self.table, E_star) if self.finite_size else None
+            self._models[E_eff] = (E_star, PointInteraction(self.table, E_star), law, compliance, finite_size)
         return self._models[E_eff]
 
     def first(self, load: float, *, relaxed: bool) -> dict:
@@ -224,7 +229,7 @@ class _Stepper:
     def _solve(self, E_eff: float, g, load: float) -> tuple[dict, np.ndarray]:
         """The step's problem; returns the step's scalars and the field the memory carries on."""
         from . import _check_separate_contacts
-        E_star, interaction, law, compliance = self.model(E_eff)
+        E_star, interaction, law, compliance, finite_size = self.model(E_eff)
         table = self.table
         if g is None:
             history_force = np.zeros(table.count)
@@ -234,7 +239,8 @@ class _Stepper:
             history_force = asperity_forces(g, table)
         total = None if self.control == "penetration" else float(load) * self.area + float(history_force.sum())
         carried = solve_macro(table, interaction, law, penetration=None if total is not None else float(load),
-                              total_force=total, z_top=self.z_top, tol=self.macro_tol, max_iter=self.max_iter)
+                              total_force=total, z_top=self.z_top, tol=self.macro_tol, max_iter=self.max_iter,
+                              finite_size=finite_size)
         if not carried.converged:
             raise ConvergenceError(f"macro step: Newton did not converge in {carried.iterations} iterations: residual "
                                    f"{carried.residual:.3e} > macro_tol {self.macro_tol:.1e}",
@@ -319,6 +325,7 @@ class _Record:
             "prony": [v for branch in getattr(material, "prony", ()) for v in branch],
             "periodic": int(table.periodic), "window_lengths": [table.length, table.length],
             "load_control": stepper.control, "tol": stepper.tol, "macro_tol": stepper.macro_tol,
+            "finite_size_correction": int(stepper.finite_size),
             "max_iter": stepper.max_iter, "single_asperity_law": "hertz",
             **({} if stepper.law is None else {k: v for k, v in stepper.law.attrs.items() if k != "law_E_star"}),
             "time_integration": "displacement at a constant rate over each step, Prony branches integrated exactly "
