@@ -13,17 +13,22 @@ The iteration is :func:`contactlib.solvers.solve_polonsky_keer`'s under displace
 preconditioner (Polonsky & Keer 1999: CG on the contact set, projection on ``p >= 0``, re-entry of
 interpenetrating points with a restart of the conjugacy), with its residual
 (:func:`contactlib.solvers.contact_residual`) per window. A window leaves the stack once its residual is
-at most ``tol``, so the work follows each window's own iterations.
+at most ``tol``, so the work follows each window's own iterations. Between the two batched products of an
+iteration, the rest (gap, residual, direction; step, projection, re-entry) is two compiled passes over the
+stack: as a dozen numpy expressions it cost more than the products (10^3 windows of 14^2 nodes, single
+precision, 4 iterations: 13.8 -> 9.0 ms a solve, the same iterates to 1e-15 in double precision).
 """
 
 from __future__ import annotations
 
 import copy
+import math
 
 import numpy as np
 import scipy.fft as sfft
 
 from ..grid import Grid
+from .._numba import jit
 from ..operators import Compliance
 
 
@@ -134,69 +139,130 @@ def solve_stack(stack: WindowStack, interference: np.ndarray, *, tol: float, max
     iterations : ndarray of int, shape (M,)
     residual : ndarray, shape (M,)
     """
-    s = np.asarray(interference, dtype=float)
-    shape = s.shape
+    shape = np.shape(interference)
     m = shape[0]
+    # every window as a row of w^2 nodes, in the stack's precision (single: half the memory traffic of
+    # every pass, no casts around the products); the passes between the products are compiled, one a side
+    s = np.asarray(interference).reshape(m, -1).astype(stack.dtype, copy=False)
     if scale is None:
-        scale = np.sqrt(np.var(s.reshape(m, -1), axis=1))
+        scale = np.empty(m)
+        _window_rms(s, scale)
     scale = np.where(scale > 0, scale, 1.0)
-    # every window as a row of w^2 nodes: reductions along contiguous rows, in-place updates; in the
-    # stack's precision (single: half the memory traffic of every pass, no casts around the products)
-    pressure, displacement = np.zeros((m, shape[1] * shape[2])), np.zeros((m, shape[1] * shape[2]))
-    s = s.reshape(m, -1).astype(stack.dtype, copy=False)
-    p = np.maximum(s, 0.0) / stack.self_compliance if initial_pressure is None else \
+    pressure, displacement = np.empty((m, s.shape[1])), np.empty((m, s.shape[1]))
+    p = np.maximum(s, 0.0) / stack.dtype.type(stack.self_compliance) if initial_pressure is None else \
         np.maximum(np.asarray(initial_pressure, dtype=stack.dtype).reshape(m, -1), 0.0)
-    iterations, residual = np.zeros(m, dtype=int), np.full(m, np.inf)
+    iterations, residual = np.zeros(m, dtype=np.int64), np.full(m, np.inf)
     live = np.arange(m)  # windows still on the stack, and their state below
     frozen = np.zeros(m, dtype=bool)  # on the stack but done: answer recorded, held still (tau = 0)
     t = np.zeros_like(p)
+    g = np.empty(p.shape)
     G_old = np.ones(m)
     restart = np.ones(m, dtype=bool)
-    per_node = float(s.shape[1])
-    known = None if initial_displacement is None else \
-        np.asarray(initial_displacement).reshape(m, -1).astype(stack.dtype, copy=False)
+    known = None if initial_displacement is None else np.asarray(initial_displacement).reshape(m, -1)
     for it in range(max_iter + 1):
         u = known if it == 0 and known is not None else stack(p.reshape(-1, *shape[1:])).reshape(p.shape)
-        g = u - s
-        # the residual of contactlib.solvers.contact_residual, per window (max(-g, 0) = (|g| - g) / 2)
-        magnitude = np.abs(g)
-        psum = p.sum(axis=1)
-        comp = np.einsum("ki,ki->k", p, magnitude)
-        pen = 0.5 * (magnitude.sum(axis=1) - g.sum(axis=1))
-        with np.errstate(divide="ignore", invalid="ignore"):
-            r = np.where(psum > 0, (comp + psum * pen / per_node) / (psum * scale), pen / (per_node * scale))
-        fresh = np.flatnonzero(~frozen)
-        residual[live[fresh]] = r[fresh]
-        iterations[live[fresh]] = it
-        done = ((r <= tol) | (it == max_iter)) & ~frozen
-        if done.any():
-            pressure[live[done]], displacement[live[done]] = p[done], u[done]
-            frozen |= done
-            if frozen.all():
-                break
-            if np.count_nonzero(frozen) >= COMPACT * frozen.size:  # copying the stack costs a product
-                keep = np.flatnonzero(~frozen)
-                live, p, g, t, s, scale = live[keep], p[keep], g[keep], t[keep], s[keep], scale[keep]
-                G_old, restart, frozen = G_old[keep], restart[keep], frozen[keep]
-        contact = p > 0.0
-        g_contact = g * contact
-        G = np.einsum("ki,ki->k", g_contact, g)
-        beta = np.where(restart | (G_old <= 0), 0.0, G / np.where(G_old > 0, G_old, 1.0))
-        G_old = G
-        t *= beta[:, None]  # t = g + beta t on the contact, 0 off it
-        t *= contact
-        t += g_contact
+        held = _measure_and_direct(u, s, p, g, t, scale, G_old, restart, frozen, live, float(tol), it,
+                                   it == max_iter, pressure, displacement, iterations, residual)
+        if held == frozen.size:
+            break
+        if held >= COMPACT * frozen.size:  # copying the stack costs a product
+            keep = np.flatnonzero(~frozen)
+            live, p, g, t, s, scale = live[keep], p[keep], g[keep], t[keep], s[keep], scale[keep]
+            G_old, restart, frozen = G_old[keep], restart[keep], frozen[keep]
         kt = stack(t.reshape(-1, *shape[1:])).reshape(t.shape)
-        tkt = np.einsum("ki,ki->k", t, kt)
-        gt = np.einsum("ki,ki->k", g_contact, t)
-        tau = np.where(tkt > 0, gt / np.where(tkt > 0, tkt, 1.0), 1.0 / stack.self_compliance).astype(stack.dtype)
-        tau[frozen] = 0.0
-        p -= tau[:, None] * t
-        np.maximum(p, 0.0, out=p)
-        # re-entry: points off contact that interpenetrate get the pressure their overlap asks for
-        overlap = g < 0
-        overlap &= ~contact
-        overlap[frozen] = False
-        np.copyto(p, -tau[:, None] * g, where=overlap)
-        restart = overlap.any(axis=1)
+        _step_project_reenter(kt, g, p, t, frozen, restart, 1.0 / stack.self_compliance)
     return pressure.reshape(shape), displacement.reshape(shape), iterations, residual
+
+
+@jit
+def _window_rms(s, out):
+    """``out[k]``: the rms of row ``k`` of ``s`` about its mean."""
+    n = s.shape[1]
+    for k in range(s.shape[0]):
+        total = 0.0
+        for i in range(n):
+            total += s[k, i]
+        mean = total / n
+        var = 0.0
+        for i in range(n):
+            d = s[k, i] - mean
+            var += d * d
+        out[k] = math.sqrt(var / n)
+
+
+@jit
+def _measure_and_direct(u, s, p, g, t, scale, G_old, restart, frozen, live, tol, it, last, pressure, displacement,
+                        iterations, residual):
+    """One pass per window still moving: the gap ``g = u - s``, the window's residual (that of
+    :func:`contactlib.solvers.contact_residual`); a window at ``tol`` (or at the last iteration) records its
+    answer in row ``live[k]`` of ``pressure`` and ``displacement`` and is frozen; the others get their next
+    conjugate direction ``t = g + beta t`` on the contact (0 off it). Returns the count of frozen windows."""
+    m, n = p.shape
+    held = 0
+    for k in range(m):
+        if frozen[k]:
+            held += 1
+            continue
+        psum = 0.0
+        comp = 0.0
+        pen = 0.0
+        for i in range(n):
+            gi = u[k, i] - s[k, i]
+            g[k, i] = gi
+            psum += p[k, i]
+            comp += p[k, i] * abs(gi)
+            if gi < 0.0:
+                pen -= gi
+        if psum > 0.0:
+            r = (comp + psum * pen / n) / (psum * scale[k])
+        else:
+            r = pen / (n * scale[k])
+        row = live[k]
+        residual[row] = r
+        iterations[row] = it
+        if r <= tol or last:
+            for i in range(n):
+                pressure[row, i] = p[k, i]
+                displacement[row, i] = u[k, i]
+            frozen[k] = True
+            held += 1
+            continue
+        G = 0.0
+        for i in range(n):
+            if p[k, i] > 0.0:
+                G += g[k, i] * g[k, i]
+        beta = 0.0
+        if not restart[k] and G_old[k] > 0.0:
+            beta = G / G_old[k]
+        G_old[k] = G
+        for i in range(n):
+            t[k, i] = beta * t[k, i] + g[k, i] if p[k, i] > 0.0 else 0.0
+    return held
+
+
+@jit
+def _step_project_reenter(kt, g, p, t, frozen, restart, fallback):
+    """Per window still moving: the step ``tau = <g, t>_contact / <t, K t>`` (``fallback``, the inverse
+    self-compliance, if the curvature is not positive), ``p -= tau t`` projected on ``p >= 0``, and re-entry
+    of the points off contact that interpenetrate with the pressure their overlap asks, ``-tau g``, which
+    restarts the conjugacy."""
+    m, n = p.shape
+    for k in range(m):
+        if frozen[k]:
+            continue
+        tkt = 0.0
+        gt = 0.0
+        for i in range(n):
+            tkt += t[k, i] * kt[k, i]
+            if p[k, i] > 0.0:
+                gt += g[k, i] * t[k, i]
+        tau = gt / tkt if tkt > 0.0 else fallback
+        entered = False
+        for i in range(n):
+            if p[k, i] > 0.0:
+                value = p[k, i] - tau * t[k, i]
+                p[k, i] = value if value > 0.0 else 0.0
+            elif g[k, i] < 0.0:
+                p[k, i] = -tau * g[k, i]
+                entered = True
+        restart[k] = entered

@@ -47,7 +47,8 @@ import numpy as np
 
 from ..grid import Grid
 from ..operators import Compliance
-from ..solvers.state import contact_residual, dot
+from ..solvers.state import dot, residual_from_sums
+from . import _window_sweeps as sweeps
 from .asperities import AsperityTable
 from .interaction import PointInteraction
 from .local import WindowStack, solve_stack
@@ -124,21 +125,13 @@ def hertz_pressure_field(table: AsperityTable, grid: Grid, force: np.ndarray, co
     its nodes carry the force exactly [pressure]. ``stack``: :func:`_window_stack`'s nodes and squared
     distances, if at hand."""
     nodes_of, r2 = _window_stack(table, grid, window)[::2] if stack is None else stack
-    local = _hertz_stack(force, contact_radius, r2, grid.spacing[0])
+    local = np.empty(r2.shape)
+    sweeps.hertz_stack(np.asarray(force, dtype=float), np.asarray(contact_radius, dtype=float), r2,
+                       grid.spacing[0] ** 2, r2 < 0, False, local)
     on = local > 0  # inside each contact disc: the discs lie in disjoint footprints, each node once
     field = np.zeros(grid.shape)
     field.ravel()[nodes_of[on]] = local[on]
     return field
-
-
-def _hertz_stack(force: np.ndarray, contact_radius: np.ndarray, r2: np.ndarray, h: float) -> np.ndarray:
-    """:func:`hertz_pressure_field` on the window stack ``(N, w, w)`` of squared distances ``r2``."""
-    loaded = force > 0
-    a2 = np.where(loaded, contact_radius, 1.0)[:, None, None] ** 2
-    local = np.sqrt(np.clip(1.0 - r2 / a2, 0.0, None)) * loaded[:, None, None]
-    total = local.sum(axis=(1, 2)) * h * h
-    local *= np.divide(force, total, out=np.zeros_like(total), where=total > 0)[:, None, None]
-    return local
 
 
 def window_size(table: AsperityTable, *, grid: Grid, contact_radius: np.ndarray) -> int:
@@ -176,6 +169,8 @@ def solve_micro(table: AsperityTable, macro: MacroState, law: HertzLaw, E_star: 
         When a local contact reaches its asperity's footprint edge: the separate-contact assumption
         fails there.
     """
+    if int(max_iter) < 1:
+        raise ValueError(f"max_iter must be >= 1, got {max_iter!r}")
     radius = law.contact_radius(macro.local_penetration)
     window = window_size(table, grid=table.grid, contact_radius=radius)
     while True:
@@ -201,7 +196,8 @@ def _solve_in_windows(table: AsperityTable, macro: MacroState, law: HertzLaw, E_
                       known_force: np.ndarray | None, initial_pressure: np.ndarray | None,
                       local_max_iter: int, force_tol: float | None = None) -> MicroState:
     """:func:`solve_micro` with windows of ``window`` nodes per side, all solved together on a stack
-    (:mod:`.local`): the arrays ``(N, w, w)`` hold every asperity's window."""
+    (:mod:`.local`): the arrays ``(N, w, w)`` hold every asperity's window; the passes over them are
+    compiled (:mod:`._window_sweeps`)."""
     grid, heights = table.grid, table.heights
     if known_displacement is not None:  # the same problem on shifted heights
         heights = heights - np.asarray(known_displacement, dtype=float)
@@ -217,69 +213,71 @@ def _solve_in_windows(table: AsperityTable, macro: MacroState, law: HertzLaw, E_
     global_op = Compliance(grid, E_star=E_star, periodic=table.periodic)
     nodes_of, masks, r2 = _window_stack(table, grid, window)
     edges = _footprint_edges(masks)
-    on = nodes_of[masks]  # the footprints' nodes (flat, each once: the footprints are disjoint)
-    height_stack = heights.ravel()[nodes_of]
+    height_stack = np.empty(masks.shape)
+    sweeps.gather(heights, nodes_of, height_stack)
+    own = np.empty(masks.shape)  # each asperity's pressure on its window
     if initial_pressure is None:  # Hertz's pressure of the macro forces: its discs lie inside the footprints
-        own = _hertz_stack(macro.force, radius, r2, h) * masks  # each asperity's pressure on its window
-        pressure = np.zeros(grid.shape)
-        pressure.ravel()[on] = own[masks]
+        sweeps.hertz_stack(macro.force, radius, r2, dA, masks, True, own)
+        pressure = None  # the field is the stack's, scattered where needed
     else:
         pressure = np.array(initial_pressure, dtype=float)
-        own = pressure.ravel()[nodes_of] * masks
+        sweeps.gather(pressure, nodes_of, own)
+        own *= masks
     # the pressure off the footprints (an initial_pressure's only): part of the first sweep's change
     off_footprints = 0.0
-    if initial_pressure is not None:
+    if pressure is not None:
         off_footprints = max(float(np.sum(pressure * pressure)) - float(np.sum(own * own)), 0.0)
     delta = macro.penetration
-    change, force_change, sweeps, local_iterations = np.inf, np.inf, 0, 0
+    change, force_change, iterations, local_iterations = np.inf, np.inf, 0, 0
     own_displacement = None  # K_w p_k of each asperity's current pressure, from its last local solve
     last = None  # the last sweep's interference, contact stiffness and coarse change of the forces
     stop = False
+    local = np.empty(masks.shape)
+    top, low = np.empty(table.count), np.empty(table.count)
     # the convolution at the top of a sweep also serves the previous sweep's stop and the returned fields
     for it in range(1, max_iter + 2):
-        global_op.load()[...] = pressure
+        if pressure is None:
+            sweeps.scatter_footprints(own, masks, nodes_of, global_op.load())
+        else:
+            global_op.load()[...] = pressure
+            pressure = None
         displacement = global_op.convolve()  # a view of the FFT buffer: copied only if kept
         body_level = z_top - delta  # undeformed body surface
         old_force = own.sum(axis=(1, 2)) * dA
         if own_displacement is None:
             own_displacement = stack(own)
-        local_heights = height_stack - (displacement.ravel()[nodes_of] - own_displacement)
-        top = np.where(masks, local_heights, -np.inf).max(axis=(1, 2))
+        sweeps.local_heights(height_stack, displacement, nodes_of, own_displacement, masks, local, top, low)
         if force_tol is not None and last is not None:
             contact = own > 0
             # an asperity out of contact that the body now reaches: the law's force at its overlap
             arriving = np.where(contact.any(axis=(1, 2)), 0.0, law.force(top - body_level))
-            force_change = _next_force_change(local_heights - body_level, contact, old_force, *last, arriving)
+            force_change = _next_force_change(local - body_level, contact, old_force, *last, arriving)
             stop = force_change <= force_tol and force_error <= force_tol
         if stop or it > max_iter:
-            displacement = displacement.copy()
             break
-        sweeps = it
-        low = np.where(masks, local_heights, np.inf).min(axis=(1, 2))
+        iterations = it
         touching = np.flatnonzero(top > body_level)
         every = touching.size == table.count  # no copies of the stacks for a subset
         if not every:
             patches, solved = np.zeros_like(own), np.zeros_like(own)
         if touching.size:
-            m = masks if every else masks[touching]
             # off the footprint the window is lowered below the footprint's lowest point: no contact there
-            lowered = (low - (top - low))[touching][:, None, None]
-            interference = np.where(m, local_heights if every else local_heights[touching], lowered)
-            interference -= body_level
-            scale = np.sqrt(np.var(interference.reshape(touching.size, -1), axis=1))
+            rigid = np.empty((touching.size,) + masks.shape[1:])
+            scale = np.empty(touching.size)
+            sweeps.interference(local, masks, touching, top, low, body_level, rigid, scale)
             warm = old_force[touching] > 0
             start = own if every else own[touching]  # solve_stack does not write into it
             cold = np.flatnonzero(~warm)
             if cold.size:
                 start = start.copy() if every else start
-                start[cold] = np.maximum(interference[cold], 0.0) / stack.self_compliance
+                start[cold] = np.maximum(rigid[cold], 0.0) / stack.self_compliance
             # the warm start's displacement is at hand (own_displacement = K_w own): one product fewer
             known = None if cold.size else (own_displacement if every else own_displacement[touching])
-            p_local, u_local, iterations, _ = solve_stack(stack, interference, tol=local_tol,
-                                                          max_iter=local_max_iter, initial_pressure=start, scale=scale,
-                                                          initial_displacement=known)
-            local_iterations += int(iterations.sum())
-            p_local *= m
+            p_local, u_local, local_its, _ = solve_stack(stack, rigid, tol=local_tol, max_iter=local_max_iter,
+                                                         initial_pressure=start, scale=scale,
+                                                         initial_displacement=known)
+            local_iterations += int(local_its.sum())
+            p_local *= masks if every else masks[touching]
             _check_inside(p_local, edges if every else tuple(e[touching] for e in edges), touching)
             if every:
                 patches, solved = p_local, u_local
@@ -292,18 +290,13 @@ def _solve_in_windows(table: AsperityTable, macro: MacroState, law: HertzLaw, E_
         factor, step = _coarse_correction(interaction, slope, old_force, new_force, total_force, rtol=coarse_rtol)
         solved_force = new_force.copy()
         delta += step
-        patches *= factor[:, None, None]
-        own_displacement = solved * factor[:, None, None]  # linear: no convolution needed next sweep
         # the change of the field from the stacks: both pressures lie on the footprints (but for an
-        # initial_pressure's part off them, in the first sweep)
-        norm = float(np.sqrt(np.einsum("kij,kij->", patches, patches)))
-        difference = patches - own
-        change = math.sqrt(float(np.einsum("kij,kij->", difference, difference)) + off_footprints) / norm \
-            if norm > 0 else 0.0
+        # initial_pressure's part off them, in the first sweep); K_w is linear, so the scaled
+        # displacement needs no product next sweep
+        norm, difference = sweeps.rescale(patches, solved, factor, own)
+        change = math.sqrt(difference + off_footprints) / math.sqrt(norm) if norm > 0 else 0.0
         off_footprints = 0.0
-        pressure = np.zeros(grid.shape)
-        pressure.ravel()[on] = patches[masks]
-        own = patches
+        own, own_displacement = patches, solved
         new_force *= factor
         force_error = 0.0
         if total_force is not None and total_force > 0:
@@ -313,36 +306,27 @@ def _solve_in_windows(table: AsperityTable, macro: MacroState, law: HertzLaw, E_
             force_change = float(np.max(np.abs(new_force - old_force))) / largest if largest > 0 else 0.0
             stop = change <= tol and force_error <= tol
         else:  # the interference the sweep solved for; the coarse step's change of the forces on top of it
-            solved_interference = local_heights - body_level
-            last = (solved_interference, slope, new_force - solved_force)
-    gap = displacement + (z_top - delta)
-    gap -= heights
+            last = (local - body_level, slope, new_force - solved_force)
+    gap, kept = np.empty(grid.shape), np.empty(grid.shape)
+    below = sweeps.gap_field(displacement, z_top - delta, heights, gap, kept)
+    displacement = kept
+    pressure = np.empty(grid.shape)
+    sweeps.scatter_footprints(own, masks, nodes_of, pressure)
     force = own.sum(axis=(1, 2)) * dA
     nodes = np.count_nonzero(own > 0, axis=(1, 2))
-    below = gap < 0
-    below.ravel()[on] = False  # off the footprints the body must stay clear of the surface
-    if below.any():
+    total, comp, pen, below_on = sweeps.footprint_sums(own, gap, nodes_of, masks)
+    if below > below_on:  # off the footprints the body must stay clear of the surface
+        off = np.ones(grid.shape, dtype=bool)
+        off.ravel()[nodes_of[masks]] = False
         raise ValueError(
             "mean_pressure/penetration: the body reaches the surface between the asperities' footprints (the gap "
-            f"there falls to {float(gap[below].min()):.3g}): the load is beyond what separate spherical contacts "
+            f"there falls to {float(gap[off].min()):.3g}): the load is beyond what separate spherical contacts "
             "carry, so the two-scale method does not apply")
-    residual = _footprint_residual(pressure, gap, on, _height_scale(heights))
+    # off the footprints the pressure is zero and the gap positive: they add nothing but their count
+    residual = residual_from_sums(comp, pen, total, gap.size, _height_scale(heights))
     converged = change <= tol if force_tol is None else force_change <= force_tol
-    return MicroState(pressure, displacement, gap, force, nodes, float(delta), sweeps, local_iterations, change,
+    return MicroState(pressure, displacement, gap, force, nodes, float(delta), iterations, local_iterations, change,
                       residual, converged, window, force_change)
-
-
-def _footprint_residual(pressure: np.ndarray, gap: np.ndarray, on: np.ndarray, scale: float) -> float:
-    """:func:`contactlib.solvers.contact_residual` of the grid fields from the footprints' nodes ``on``
-    alone (flat indices): off them the pressure is zero and the gap (checked) positive, so they add
-    nothing but their count to its means; a third of the work on 10^4 asperities at coverage 0.2."""
-    p, g = pressure.ravel()[on], gap.ravel()[on]
-    total = float(p.sum())
-    if total <= 0:
-        return contact_residual(pressure, gap, scale)
-    comp = float(np.einsum("i,i->", p, np.abs(g)))
-    pen = float(np.maximum(-g, 0.0).sum()) / pressure.size
-    return (comp + total * pen) / (total * scale)
 
 
 def _height_scale(heights: np.ndarray) -> float:
@@ -360,21 +344,12 @@ def _window_stack(table: AsperityTable, grid: Grid, window: int) -> tuple[np.nda
     inside its footprint, and their squared distances from its summit [length^2]. Each window is
     centred on the grid node nearest its summit and aligned with the grid, wrapped if periodic (else
     shifted inside the grid)."""
-    n, h = grid.shape[1], grid.spacing[0]
-    footprint = table.footprint_radius
-    centre = np.rint(table.centers / h).astype(int)  # (N, 2): each window centred on the node nearest its summit
-    start = centre - window // 2
-    if not table.periodic:
-        start = np.clip(start, 0, n - window)
-    idx = start[:, :, None] + np.arange(window)[None, None, :]  # (N, 2, w)
-    offsets = idx * h - table.centers[:, :, None]
-    if table.periodic:
-        L = table.length
-        offsets = (offsets + L / 2) % L - L / 2
-        idx = idx % n
-    nodes_of = idx[:, 0, :, None] * n + idx[:, 1, None, :]
-    r2 = offsets[:, 0, :, None] ** 2 + offsets[:, 1, None, :] ** 2
-    return nodes_of, r2 < footprint[:, None, None] ** 2, r2
+    shape = (table.count, window, window)
+    nodes_of, masks, r2 = np.empty(shape, np.int64), np.empty(shape, bool), np.empty(shape)
+    sweeps.window_nodes(np.ascontiguousarray(table.centers, dtype=float), float(grid.spacing[0]), int(grid.shape[1]),
+                        int(window), bool(table.periodic), float(table.length),
+                        np.ascontiguousarray(table.footprint_radius, dtype=float), nodes_of, masks, r2)
+    return nodes_of, masks, r2
 
 
 def _coarse_correction(interaction: PointInteraction, slope: np.ndarray, old_force: np.ndarray,
@@ -429,16 +404,9 @@ def _cached_window_stack(window: int, spacing: float, E_star: float, single: boo
 def _footprint_edges(mask: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """For :func:`_check_inside`: the nodes next to a node off the footprint, and the window border's
     nodes that are not, stacks ``(N, w, w)`` of the footprint masks ``mask``."""
-    outside = ~mask
-    edge = np.zeros_like(mask)
-    edge[:, 1:] |= outside[:, :-1]
-    edge[:, :-1] |= outside[:, 1:]
-    edge[:, :, 1:] |= outside[:, :, :-1]
-    edge[:, :, :-1] |= outside[:, :, 1:]
-    border = np.zeros_like(mask)
-    border[:, 0] = border[:, -1] = True
-    border[:, :, 0] = border[:, :, -1] = True
-    return edge, border & ~edge
+    edge, border = np.empty_like(mask), np.empty_like(mask)
+    sweeps.footprint_edges(mask, edge, border)
+    return edge, border
 
 
 def _check_inside(p_local: np.ndarray, edges: tuple[np.ndarray, np.ndarray], which: np.ndarray) -> None:
