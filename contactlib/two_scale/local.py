@@ -206,13 +206,15 @@ def _measure_and_direct(u, s, p, g, t, scale, G_old, restart, frozen, live, tol,
         psum = 0.0
         comp = 0.0
         pen = 0.0
+        G = 0.0
         for i in range(n):
             gi = u[k, i] - s[k, i]
             g[k, i] = gi
-            psum += p[k, i]
-            comp += p[k, i] * abs(gi)
-            if gi < 0.0:
-                pen -= gi
+            pi = p[k, i]
+            psum += pi
+            comp += pi * abs(gi)
+            pen += max(-gi, 0.0)
+            G += gi * gi if pi > 0.0 else 0.0
         if psum > 0.0:
             r = (comp + psum * pen / n) / (psum * scale[k])
         else:
@@ -227,10 +229,6 @@ def _measure_and_direct(u, s, p, g, t, scale, G_old, restart, frozen, live, tol,
             frozen[k] = True
             held += 1
             continue
-        G = 0.0
-        for i in range(n):
-            if p[k, i] > 0.0:
-                G += g[k, i] * g[k, i]
         beta = 0.0
         if not restart[k] and G_old[k] > 0.0:
             beta = G / G_old[k]
