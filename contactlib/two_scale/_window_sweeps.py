@@ -192,18 +192,23 @@ def rescale(patches, solved, factor, own):
 @jit
 def gap_field(displacement, level, heights, gap, kept):
     """``gap = displacement + level - heights`` and ``kept`` = a copy of ``displacement`` (the FFT buffer's
-    view), in one pass; returns how many nodes have a negative gap."""
+    view), in one pass; returns how many nodes have a negative gap, and the sums of the heights and of
+    their squares (the residual's height scale, without another pass over the grid)."""
     below = 0
+    total = 0.0
+    squares = 0.0
     rows, cols = gap.shape
     for i in range(rows):
         for j in range(cols):
             u = displacement[i, j]
+            h = heights[i, j]
             kept[i, j] = u
-            g = u + level - heights[i, j]
+            g = u + level - h
             gap[i, j] = g
-            if g < 0.0:
-                below += 1
-    return below
+            below += g < 0.0
+            total += h
+            squares += h * h
+    return below, total, squares
 
 
 @jit
