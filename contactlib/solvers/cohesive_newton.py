@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from .krylov import gmres
 from .state import height_scale
 
 C_SCALE = 1.0
@@ -22,6 +23,12 @@ to move the contact a long way (a cold start at small range failed with it on)."
 
 STALL = 12
 """Newton iterations without halving the best residual that count as a stall."""
+
+GMRES_RESTART = 40
+"""Krylov vectors a Newton step's GMRES keeps before it restarts."""
+
+GMRES_ITERATIONS = 20 * (GMRES_RESTART + 1)
+"""Operator applications a Newton step's GMRES may use (twenty restart cycles)."""
 
 
 class CohesiveNewton:
@@ -88,7 +95,10 @@ class CohesiveNewton:
             rhs = -phi.ravel()
             if self.control:
                 rhs = np.concatenate([rhs, [-c * (float(p.mean()) - self.load)]])
-            step, used = gmres(matvec, precondition, rhs, rtol=min(1e-4, max(0.1 * residual, 1e-10)))
+            # the set solvers' GMRES (:func:`.krylov.gmres`), from zero, to a relative residual
+            step, used, _ = gmres(lambda v: (matvec(v), 0.0), precondition, rhs, np.zeros_like(rhs), 0.0,
+                                  GMRES_ITERATIONS, restart=GMRES_RESTART,
+                                  relative=min(1e-4, max(0.1 * residual, 1e-10)))
             krylov += used
             # near the answer a step that multiplies the residual is cut back (halved up to BACKTRACK times): the
             # answer an active-set flip at the contact edge can throw a full step far off
@@ -112,41 +122,3 @@ class CohesiveNewton:
             p, (g, p_r, active, phi, residual) = polished, trial
         converged = residual <= self.tol
         return p, delta, g, np.where(active, p_r, 0.0), it, krylov, residual, converged
-
-
-def gmres(matvec, precondition, rhs: np.ndarray, *, rtol: float, restart: int = 40, max_cycles: int = 20
-          ) -> tuple[np.ndarray, int]:
-    """Right-preconditioned restarted GMRES (Saad & Schultz 1986), classical Gram-Schmidt done twice
-    with BLAS: ``(x, iterations)``, ``|rhs - A x| <= rtol |rhs|`` unless the cycles run out."""
-    x = np.zeros_like(rhs)
-    target = rtol * float(np.linalg.norm(rhs))
-    total = 0
-    r = rhs.copy()
-    for _ in range(max_cycles):
-        beta = float(np.linalg.norm(r))
-        if beta <= target or beta == 0.0:
-            break
-        V = np.zeros((restart + 1, rhs.size))
-        Z = np.zeros((restart, rhs.size))
-        H = np.zeros((restart + 1, restart))
-        V[0] = r / beta
-        k = 0
-        for k in range(restart):
-            Z[k] = precondition(V[k])
-            w = matvec(Z[k])
-            for _ in range(2):  # CGS2: one more pass restores orthogonality
-                h = V[: k + 1] @ w
-                w -= h @ V[: k + 1]
-                H[: k + 1, k] += h
-            H[k + 1, k] = float(np.linalg.norm(w))
-            total += 1
-            e1 = np.zeros(k + 2)
-            e1[0] = beta
-            y, *_ = np.linalg.lstsq(H[: k + 2, : k + 1], e1, rcond=None)
-            estimate = float(np.linalg.norm(H[: k + 2, : k + 1] @ y - e1))
-            if H[k + 1, k] <= 1e-14 * beta or estimate <= target:
-                break
-            V[k + 1] = w / H[k + 1, k]
-        x += y @ Z[: k + 1]
-        r = rhs - matvec(x)
-    return x, total
