@@ -465,25 +465,27 @@ def test_ewald_accuracy_is_what_was_asked(monkeypatch, accuracy):
 def test_separable_spreading_matches_the_sparse_matrix():
     """The Ewald product's spreading and gathering by the separable Gaussian kernels against the sparse
     gathering matrix (and its transpose) built independently from the same Gaussians, on a mesh where the
-    supports wrap around the periodic window: the mesh fields and the gathered values agree to 1e-13."""
+    supports wrap around the periodic window: the mesh fields and the gathered values agree to 1e-13. Also
+    on a mesh narrower than the support (the kernels that wrap every column)."""
     from contactlib.two_scale.interaction import _gather, _gaussian_factors, _gaussian_gather, _spread
 
     rng = np.random.default_rng(7)
     centers = rng.uniform(0.0, 1.0, (300, 2))
     centers[:3] = [[0.0, 0.0], [0.999, 0.5], [0.01, 0.995]]  # supports across the window's edges
-    m, s = 64, 0.02
-    rows, cols, gx, gy = _gaussian_factors(centers, 1.0, m, s, 4.8)  # 9 nodes per axis: accuracy 1e-5
-    matrix = _gaussian_gather(centers, 1.0, m, s, 4.8)
-    forces = rng.uniform(-1.0, 1.0, 300)
-    mesh = np.zeros((m, m))
-    _spread(rows, cols, gx, gy, forces, mesh)
-    expected = (matrix.T @ forces).reshape(m, m)
-    assert np.max(np.abs(mesh - expected)) < 1e-13 * np.max(np.abs(expected))
-    field = rng.standard_normal((m, m))
-    out = np.empty(300)
-    _gather(rows, cols, gx, gy, field, out)
-    gathered = matrix @ field.ravel()
-    assert np.max(np.abs(out - gathered)) < 1e-13 * np.max(np.abs(gathered))
+    for m, s, wider in ((64, 0.02, False), (6, 0.2, True)):  # supports of 13 nodes on 64, then on 6
+        rows, cols, gx, gy = _gaussian_factors(centers, 1.0, m, s, 4.8)
+        assert (gx.shape[1] > m) == wider
+        matrix = _gaussian_gather(centers, 1.0, m, s, 4.8)
+        forces = rng.uniform(-1.0, 1.0, 300)
+        mesh = np.zeros((m, m))
+        _spread(rows, cols, gx, gy, forces, mesh)
+        expected = (matrix.T @ forces).reshape(m, m)
+        assert np.max(np.abs(mesh - expected)) < 1e-13 * np.max(np.abs(expected))
+        field = rng.standard_normal((m, m))
+        out = np.empty(300)
+        _gather(rows, cols, gx, gy, field, out)
+        gathered = matrix @ field.ravel()
+        assert np.max(np.abs(out - gathered)) < 1e-13 * np.max(np.abs(gathered))
 
 
 def test_contact_compliance_cg_matches_a_dense_solve():

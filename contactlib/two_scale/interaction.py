@@ -274,10 +274,90 @@ def _fill_gaussians(centers, h, m, s, reach, rows, cols, gx, gy):
             gy[k, i] = norm * math.exp(-dy * dy * scale)
 
 
-@jit
 def _spread(rows, cols, gx, gy, forces, mesh):
-    """``mesh += sum_k forces[k] G_k`` (``mesh`` zeroed by the caller). ``cols[k]`` is the first column
-    of asperity ``k``'s block: a contiguous run of the row unless it wraps past the mesh's edge."""
+    """``mesh += sum_k forces[k] G_k`` (:func:`_gaussian_factors`' separable Gaussians; ``mesh`` zeroed by the
+    caller): into a copy of the mesh widened by the support ``P`` (no wrap inside the loops), folded back."""
+    p = gx.shape[1]
+    if p > mesh.shape[1]:  # supports wider than the mesh: the kernel that wraps every column
+        _spread_wrapping(rows, cols, gx, gy, forces, mesh)
+        return
+    widened = np.zeros((mesh.shape[0], mesh.shape[1] + p))
+    _kernels(p)[0](rows, cols, gx, gy, forces, widened)
+    _fold(widened, mesh)
+
+
+def _gather(rows, cols, gx, gy, mesh, out):
+    """``out[k] = sum_nodes G_k mesh``: from a copy of the mesh widened by the support (its first columns
+    repeated), as :func:`_spread`."""
+    p = gx.shape[1]
+    if p > mesh.shape[1]:
+        _gather_wrapping(rows, cols, gx, gy, mesh, out)
+        return
+    widened = np.empty((mesh.shape[0], mesh.shape[1] + p))
+    _unfold(mesh, widened)
+    _kernels(p)[1](rows, cols, gx, gy, widened, out)
+
+
+@functools.lru_cache(maxsize=None)
+def _kernels(p: int):
+    """Spreading and gathering compiled for a support of ``p`` nodes a side (a constant of the code, so the
+    inner loops unroll: 10^3 asperities at ``p = 9``, 75 -> 50 us spreading and 80 -> 30 us gathering), on a
+    mesh widened by ``p`` columns."""
+
+    @jit
+    def spread(rows, cols, gx, gy, forces, widened):
+        for k in range(gx.shape[0]):
+            c = cols[k]
+            g = gy[k]
+            for i in range(p):
+                a = forces[k] * gx[k, i]
+                line = widened[rows[k, i], c:c + p]
+                for j in range(p):
+                    line[j] += a * g[j]
+
+    @jit
+    def gather(rows, cols, gx, gy, widened, out):
+        for k in range(gx.shape[0]):
+            c = cols[k]
+            g = gy[k]
+            total = 0.0
+            for i in range(p):
+                line = widened[rows[k, i], c:c + p]
+                row = 0.0
+                for j in range(p):
+                    row += g[j] * line[j]
+                total += gx[k, i] * row
+            out[k] = total
+
+    return spread, gather
+
+
+@jit
+def _fold(widened, mesh):
+    """``mesh +=`` the widened mesh, its extra columns added to the first ones (the periodic wrap)."""
+    m = mesh.shape[1]
+    for r in range(mesh.shape[0]):
+        for j in range(m):
+            mesh[r, j] += widened[r, j]
+        for j in range(widened.shape[1] - m):
+            mesh[r, j] += widened[r, m + j]
+
+
+@jit
+def _unfold(mesh, widened):
+    """The widened mesh: ``mesh`` and, after each row, its first columns again."""
+    m = mesh.shape[1]
+    for r in range(mesh.shape[0]):
+        for j in range(m):
+            widened[r, j] = mesh[r, j]
+        for j in range(widened.shape[1] - m):
+            widened[r, m + j] = mesh[r, j]
+
+
+@jit
+def _spread_wrapping(rows, cols, gx, gy, forces, mesh):
+    """:func:`_spread` on a mesh narrower than the support. ``cols[k]`` is the first column of asperity ``k``'s
+    block: a contiguous run of the row unless it wraps past the mesh's edge."""
     n, p = gx.shape
     m = mesh.shape[1]
     for k in range(n):
@@ -294,8 +374,8 @@ def _spread(rows, cols, gx, gy, forces, mesh):
 
 
 @jit
-def _gather(rows, cols, gx, gy, mesh, out):
-    """``out[k] = sum_nodes G_k mesh``."""
+def _gather_wrapping(rows, cols, gx, gy, mesh, out):
+    """:func:`_gather` on a mesh narrower than the support."""
     n, p = gx.shape
     m = mesh.shape[1]
     for k in range(n):
