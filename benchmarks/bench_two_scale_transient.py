@@ -11,7 +11,9 @@ approach of :mod:`contactlib.studies.two_scale`) on a standard linear solid (``E
   each footprint;
 * **full**: ``contactlib.solve_transient(..., tol=--full-tol)`` (1e-4), timed (fields kept at every step for
   its error: three array copies a step);
-* **two-scale**: ``contactlib.two_scale.solve_transient(..., tol=--two-scale-tol)`` (1e-3), timed;
+* **two-scale**: ``contactlib.two_scale.solve_transient(..., tol=--two-scale-tol)`` (1e-3), or with
+  ``--two-scale-force-tol``, ``force_tol=`` (each step's sweeps stop on the asperity forces' estimated change),
+  timed;
 * **macro**: ``scale="macro"``, timed.
 
 Errors: max over steps and asperities of ``|P_k - P_k^ref|`` over the step's largest ``P_k^ref``. One timed
@@ -63,6 +65,8 @@ def main(argv=None) -> None:
     parser.add_argument("--ref-tol", type=float, default=1e-8)
     parser.add_argument("--full-tol", type=float, default=1e-4)
     parser.add_argument("--two-scale-tol", type=float, default=1e-3)
+    parser.add_argument("--two-scale-force-tol", type=float, default=None,
+                        help="run the two-scale method with force_tol= instead of tol=--two-scale-tol")
     parser.add_argument("--seed", type=int, default=0)
     parser.add_argument("--json", type=Path)
     args = parser.parse_args(argv)
@@ -76,15 +80,16 @@ def main(argv=None) -> None:
                                  fields=False).mean_pressure)
     times = np.linspace(0.0, args.t_end, args.steps + 1)
     common = {"material": m, "times": times, "mean_pressure": load}
+    stop = {"tol": args.two_scale_tol} if args.two_scale_force_tol is None else {"force_tol": args.two_scale_force_tol}
 
     reference = contactlib.solve_transient(field, tol=args.ref_tol, save_fields=True, **common)
     ref_forces = np.array([two_scale.asperity_forces(p, table) for p in reference.pressure.values])
     for fn, kw in ((contactlib.solve_transient, {"tol": args.full_tol}),
-                   (two_scale.solve_transient, {"tol": args.two_scale_tol}),
+                   (two_scale.solve_transient, stop),
                    (two_scale.solve_transient, {"scale": "macro"})):  # warm-up: one step of each
         fn(field, material=m, times=times[:1], mean_pressure=load, **kw)
     full, full_time = timed(contactlib.solve_transient, field, tol=args.full_tol, save_fields=True, **common)
-    two, two_time = timed(two_scale.solve_transient, field, tol=args.two_scale_tol, **common)
+    two, two_time = timed(two_scale.solve_transient, field, **stop, **common)
     macro, macro_time = timed(two_scale.solve_transient, field, scale="macro", **common)
 
     def error(forces):

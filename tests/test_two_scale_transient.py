@@ -81,6 +81,11 @@ def test_creeping_field_matches_the_full_transient_solver(creeping_field):
     assert macro_error.max() < 0.02
     assert np.all(macro.force.values[:, 4] == 0) and np.all(two.force.values[:, 4] == 0)
     assert "receding_contacts" not in macro.attrs
+    # the sweeps stopped on the forces' estimated change: within 2e-3 of the largest at every step (measured
+    # 1.2e-3: each step's memory carries the earlier steps' error), in fewer sweeps and Newton steps (26 against 59)
+    fast = ts.solve_transient(h, material=sls(), times=times, mean_pressure=2e-5, force_tol=1e-3)
+    assert np.all(np.abs(fast.force.values - reference) < 2e-3 * scale)
+    assert fast.attrs["force_tol"] == 1e-3 and int(fast.iterations.sum()) < int(two.iterations.sum())
 
 
 @pytest.mark.parametrize("scale", ["macro", "two-scale"])
@@ -133,6 +138,8 @@ def test_load_history_per_time():
     ({"E": 1.0, "nu": 0.5}, "material"),
     ({"initial": "glassy"}, "initial"),
     ({"tol": 0.0}, "tol"),
+    ({"force_tol": -1e-3}, "force_tol"),
+    ({"macro_tol": math.inf}, "macro_tol"),
     ({"max_iter": 0}, "max_iter"),
     ({"mean_pressure": 1.0}, "mean_pressure"),  # beyond separate contacts
 ])

@@ -51,6 +51,9 @@ from .macro import FiniteSize, HertzLaw, MacroState, solve_macro
 from .micro import solve_micro
 
 SCALES = ("macro", "two-scale")
+MACRO_TOL_TRANSIENT = 1e-10
+"""Default ``macro_tol`` of ``scale="macro"`` steps: the macro forces are then the answer, and each step's
+memory carries their error on."""
 RECEDING_TOL = 1e-6
 """A macro force below ``-RECEDING_TOL`` times the largest is a receding contact (reported)."""
 
@@ -71,7 +74,8 @@ def solve_transient(
     length: float | None = None,
     n: int | None = None,
     tol: float = 1e-6,
-    macro_tol: float = 1e-10,
+    force_tol: float | None = None,
+    macro_tol: float | None = None,
     finite_size: bool = True,
     max_iter: int = 200,
     length_unit: str = "m",
@@ -105,9 +109,14 @@ def solve_transient(
         (:meth:`~contactlib.two_scale.TabulatedLaw.at_modulus`). Lee and Radok's argument behind the
         per-asperity memory holds for any axisymmetric shape whose contact does not recede.
     initial : {"unloaded", "relaxed"}
-    periodic, length, n, tol, macro_tol, finite_size, max_iter
+    periodic, length, n, tol, force_tol, finite_size, max_iter
         As :func:`contactlib.two_scale.solve`, for every step (``finite_size``: the macro step's finite-size
-        term of the Hertz contacts, at the step's effective modulus).
+        term of the Hertz contacts, at the step's effective modulus; ``force_tol``: each step's sweeps stop on
+        the asperity forces' estimated change, not on the pressure field's).
+    macro_tol : float, optional
+        The macro step's Newton tolerance: by default 1e-10 for ``scale="macro"``; under the two-scale method,
+        where the macro forces only start each step's sweeps, as :func:`contactlib.two_scale.solve` (a hundredth
+        of ``force_tol``, else of ``tol``, within [1e-8, 1e-4]).
 
     Returns
     -------
@@ -135,12 +144,18 @@ def solve_transient(
     loads = _history(mean_pressure if mean_pressure is not None else penetration, times, control)
     if control == "mean_pressure" and np.any(loads < 0):
         raise ValueError(f"mean_pressure must be >= 0 at every time, got {loads.min()!r}")
-    for name, value in (("tol", tol), ("macro_tol", macro_tol)):
+    from . import MACRO_TOL, START_TOL_FACTOR, START_TOL_MIN, _table_with_grid  # the package imports this module
+    if macro_tol is None:
+        outer = force_tol if force_tol is not None else tol
+        valid = isinstance(outer, (int, float)) and math.isfinite(outer) and outer > 0  # else refused below
+        macro_tol = min(max(START_TOL_FACTOR * outer, START_TOL_MIN), MACRO_TOL) if scale == "two-scale" and valid \
+            else MACRO_TOL_TRANSIENT
+    for name, value in (("tol", tol), ("macro_tol", macro_tol)) + ((("force_tol", force_tol),) if force_tol is not None
+                                                                    else ()):
         if not (isinstance(value, (int, float)) and math.isfinite(value) and value > 0):
             raise ValueError(f"{name} must be finite and > 0, got {value!r}")
     if isinstance(max_iter, bool) or not isinstance(max_iter, (int, np.integer)) or max_iter < 1:
         raise ValueError(f"max_iter must be an integer >= 1, got {max_iter!r}")
-    from . import _table_with_grid  # the package imports this module
     if law is not None:
         if not isinstance(law, TabulatedLaw):
             raise ValueError(f"law must be None (Hertz) or a contactlib.two_scale.tabulated_law(...), got {law!r}")
@@ -149,7 +164,7 @@ def solve_transient(
     if law is not None and scale == "two-scale" and table.grid is None:
         raise ValueError("law: the two-scale method with a tabulated law needs the heights on a grid (a DataArray)")
     stepper = _Stepper(table, material, scale, control, float(tol), float(macro_tol), int(max_iter), law,
-                       finite_size=bool(finite_size))
+                       finite_size=bool(finite_size), force_tol=None if force_tol is None else float(force_tol))
     record = _Record(table, times)
     start = _time.perf_counter()
     try:
@@ -175,10 +190,11 @@ class _Stepper:
     the grid (two-scale)."""
 
     def __init__(self, table: AsperityTable, material, scale: str, control: str, tol: float, macro_tol: float,
-                 max_iter: int, law: TabulatedLaw | None = None, finite_size: bool = True):
+                 max_iter: int, law: TabulatedLaw | None = None, finite_size: bool = True,
+                 force_tol: float | None = None):
         self.table, self.material, self.scale, self.control, self.law = table, material, scale, control, law
         self.finite_size = finite_size and law is None  # the term is Hertz's pressure's
-        self.tol, self.macro_tol, self.max_iter = tol, macro_tol, max_iter
+        self.tol, self.macro_tol, self.max_iter, self.force_tol = tol, macro_tol, max_iter, force_tol
         self.z_top = float(table.heights.max()) if table.heights is not None else float(table.summit_height.max())
         self.area = table.length**2
         self.shape = (table.count,) if scale == "macro" else table.grid.shape
@@ -265,10 +281,13 @@ class _Stepper:
         micro = solve_micro(table, macro, law, E_star, interaction, z_top=self.z_top,
                             total_force=None if total is None else float(load) * self.area, tol=self.tol,
                             max_iter=self.max_iter, known_displacement=memory,
-                            known_force=None if g is None else history_force, initial_pressure=self.predicted())
+                            known_force=None if g is None else history_force, initial_pressure=self.predicted(),
+                            force_tol=self.force_tol)
         if not micro.converged:
-            raise ConvergenceError(f"micro step did not converge in {micro.iterations} outer iterations: pressure "
-                                   f"change {micro.change:.3e} > tol {self.tol:.1e}", residual=micro.change,
+            measure = f"pressure change {micro.change:.3e} > tol {self.tol:.1e}" if self.force_tol is None else \
+                f"asperity-force change {micro.force_change:.3e} > force_tol {self.force_tol:.1e}"
+            raise ConvergenceError(f"micro step did not converge in {micro.iterations} outer iterations: {measure}",
+                                   residual=micro.change if self.force_tol is None else micro.force_change,
                                    dataset=None)
         self.previous, self.pressure = self.pressure, micro.pressure
         node_area = table.grid.element_area
@@ -325,6 +344,7 @@ class _Record:
             "prony": [v for branch in getattr(material, "prony", ()) for v in branch],
             "periodic": int(table.periodic), "window_lengths": [table.length, table.length],
             "load_control": stepper.control, "tol": stepper.tol, "macro_tol": stepper.macro_tol,
+            **({"force_tol": stepper.force_tol} if stepper.force_tol is not None else {}),
             "finite_size_correction": int(stepper.finite_size),
             "max_iter": stepper.max_iter, "single_asperity_law": "hertz",
             **({} if stepper.law is None else {k: v for k, v in stepper.law.attrs.items() if k != "law_E_star"}),
