@@ -1,7 +1,9 @@
 """Compiled passes over the micro scale's window stacks (:mod:`.micro`): numba, serial.
 
-A stack holds one ``w x w`` window per asperity, ``(N, w, w)``, with each node's flat index on the grid
-(``nodes_of``) and whether it lies in the asperity's footprint (``masks``). Between its two full-grid
+A stack holds one ``w x w`` window per asperity, ``(N, w, w)``, its node ``(k, i, j)`` at the grid's row
+``rows[k, i]`` and column ``cols[k, j]`` (wrapped on a periodic grid), and whether that node lies in the
+asperity's footprint (``masks``). The passes are bound by memory traffic: the two ``(N, w)`` index arrays
+instead of one flat index per node (``(N, w, w)`` int64, as large as a stack) made them 1.3-1.6x faster. Between its two full-grid
 convolutions and its local solves, a two-scale solve gathers, scatters and reduces these stacks about
 twenty times; as numpy expressions (fancy indexing, ``np.where`` temporaries, masked reductions) that
 bookkeeping took about 20 ms of a 50 ms solve at 10^3 asperities on 700^2 nodes, several times the
@@ -19,16 +21,14 @@ from .._numba import jit
 
 
 @jit
-def window_nodes(centers, h, n, window, periodic, length, footprint, nodes_of, masks, r2):
-    """Fill ``nodes_of``, ``masks`` and ``r2`` ``(N, w, w)``: each window centred on the grid node nearest its
-    summit (``centers`` [length], ``h`` the spacing, ``n`` nodes a side), wrapped if ``periodic`` (window
-    ``length``), else shifted inside the grid; the squared distances [length^2] from the summit (nearest
+def window_nodes(centers, h, n, window, periodic, length, footprint, rows, cols, masks, r2):
+    """Fill ``rows``, ``cols`` ``(N, w)`` and ``masks``, ``r2`` ``(N, w, w)``: each window centred on the grid node
+    nearest its summit (``centers`` [length], ``h`` the spacing, ``n`` nodes a side), wrapped if ``periodic``
+    (window ``length``), else shifted inside the grid; the squared distances [length^2] from the summit (nearest
     image) and the nodes inside the ``footprint`` radius."""
     half = window // 2
     ox = np.empty(window)
     oy = np.empty(window)
-    ix = np.empty(window, np.int64)
-    iy = np.empty(window, np.int64)
     for k in range(centers.shape[0]):
         sx = int(np.rint(centers[k, 0] / h)) - half
         sy = int(np.rint(centers[k, 1] / h)) - half
@@ -38,18 +38,17 @@ def window_nodes(centers, h, n, window, periodic, length, footprint, nodes_of, m
         for i in range(window):
             ox[i] = (sx + i) * h - centers[k, 0]
             oy[i] = (sy + i) * h - centers[k, 1]
-            ix[i] = sx + i
-            iy[i] = sy + i
+            rows[k, i] = sx + i
+            cols[k, i] = sy + i
             if periodic:
                 ox[i] = (ox[i] + length / 2) % length - length / 2
                 oy[i] = (oy[i] + length / 2) % length - length / 2
-                ix[i] = ix[i] % n
-                iy[i] = iy[i] % n
+                rows[k, i] = rows[k, i] % n
+                cols[k, i] = cols[k, i] % n
         reach = footprint[k] * footprint[k]
         for i in range(window):
             for j in range(window):
                 d = ox[i] * ox[i] + oy[j] * oy[j]
-                nodes_of[k, i, j] = ix[i] * n + iy[j]
                 r2[k, i, j] = d
                 masks[k, i, j] = d < reach
 
@@ -93,49 +92,42 @@ def hertz_stack(force, radius, r2, node_area, masks, masked, out):
 
 
 @jit
-def gather(field, nodes_of, out):
-    """``out = field.flat[nodes_of]`` (``field`` 2D, C order). A window's row lies on one grid row: one
-    integer division a row, not one a node (they cost more than the rest of the pass)."""
-    n = field.shape[1]
+def gather(field, rows, cols, out):
+    """``out[k, i, j] = field[rows[k, i], cols[k, j]]`` (``field`` 2D)."""
     m, w, _ = out.shape
     for k in range(m):
         for i in range(w):
-            row = nodes_of[k, i, 0] // n
-            first = row * n
+            line = field[rows[k, i]]
             for j in range(w):
-                out[k, i, j] = field[row, nodes_of[k, i, j] - first]
+                out[k, i, j] = line[cols[k, j]]
 
 
 @jit
-def scatter_footprints(values, masks, nodes_of, field):
+def scatter_footprints(values, masks, rows, cols, field):
     """``field`` = ``values`` on the footprints' nodes, 0 elsewhere (``field`` 2D; the footprints are
     disjoint, so every node is written once at most)."""
     field[:] = 0.0
-    n = field.shape[1]
     m, w, _ = values.shape
     for k in range(m):
         for i in range(w):
-            row = nodes_of[k, i, 0] // n
-            first = row * n
+            line = field[rows[k, i]]
             for j in range(w):
                 if masks[k, i, j]:
-                    field[row, nodes_of[k, i, j] - first] = values[k, i, j]
+                    line[cols[k, j]] = values[k, i, j]
 
 
 @jit
-def local_heights(heights, displacement, nodes_of, own_displacement, masks, out, top, low):
+def local_heights(heights, displacement, rows, cols, own_displacement, masks, out, top, low):
     """The heights each window's local solve sees, ``heights - (u_all - K_w p_k)`` (``displacement`` the
     whole grid's, 2D), into ``out``; their highest (``top``) and lowest (``low``) on the footprint
     (-inf and inf for an empty one)."""
-    n = displacement.shape[1]
     m, w, _ = heights.shape
     for k in range(m):
         high, deep = -np.inf, np.inf
         for i in range(w):
-            row = nodes_of[k, i, 0] // n
-            first = row * n
+            line = displacement[rows[k, i]]
             for j in range(w):
-                v = heights[k, i, j] - (displacement[row, nodes_of[k, i, j] - first] - own_displacement[k, i, j])
+                v = heights[k, i, j] - (line[cols[k, j]] - own_displacement[k, i, j])
                 out[k, i, j] = v
                 if masks[k, i, j]:
                     high = max(high, v)
@@ -212,20 +204,18 @@ def gap_field(displacement, level, heights, gap, kept):
 
 
 @jit
-def footprint_sums(pressure, gap, nodes_of, masks):
+def footprint_sums(pressure, gap, rows, cols, masks):
     """Over the footprints' nodes: ``(sum p, sum p |g|, sum max(-g, 0), nodes with g < 0)``, the pressure
     from its stack ``(N, w, w)``, the gap from the grid (2D)."""
-    n = gap.shape[1]
     m, w, _ = pressure.shape
     total = comp = pen = 0.0
     below = 0
     for k in range(m):
         for i in range(w):
-            row = nodes_of[k, i, 0] // n
-            first = row * n
+            line = gap[rows[k, i]]
             for j in range(w):
                 if masks[k, i, j]:
-                    g = gap[row, nodes_of[k, i, j] - first]
+                    g = line[cols[k, j]]
                     p = pressure[k, i, j]
                     total += p
                     comp += p * abs(g)

@@ -120,17 +120,16 @@ class MicroState:
 
 
 def hertz_pressure_field(table: AsperityTable, grid: Grid, force: np.ndarray, contact_radius: np.ndarray,
-                         window: int, stack: tuple[np.ndarray, np.ndarray] | None = None) -> np.ndarray:
+                         window: int, stack: tuple[np.ndarray, ...] | None = None) -> np.ndarray:
     """Hertz pressure ``p0 sqrt(1 - r^2/a^2)`` of each asperity sampled on the grid and scaled so that
-    its nodes carry the force exactly [pressure]. ``stack``: :func:`_window_stack`'s nodes and squared
-    distances, if at hand."""
-    nodes_of, r2 = _window_stack(table, grid, window)[::2] if stack is None else stack
+    its nodes carry the force exactly [pressure]. ``stack``: :func:`_window_stack`'s output, if at hand."""
+    rows, cols, _, r2 = _window_stack(table, grid, window) if stack is None else stack
     local = np.empty(r2.shape)
     sweeps.hertz_stack(np.asarray(force, dtype=float), np.asarray(contact_radius, dtype=float), r2,
                        grid.spacing[0] ** 2, r2 < 0, False, local)
     on = local > 0  # inside each contact disc: the discs lie in disjoint footprints, each node once
     field = np.zeros(grid.shape)
-    field.ravel()[nodes_of[on]] = local[on]
+    field.ravel()[_flat_nodes(rows, cols, grid.shape[1])[on]] = local[on]
     return field
 
 
@@ -211,17 +210,17 @@ def _solve_in_windows(table: AsperityTable, macro: MacroState, law: HertzLaw, E_
     coarse_rtol = min(COARSE_RTOL, max(tol if force_tol is None else force_tol, 1e-4))
     stack = _window_stack_operator(window, h, E_star, local_tol >= SINGLE_PRECISION_TOL)
     global_op = Compliance(grid, E_star=E_star, periodic=table.periodic)
-    nodes_of, masks, r2 = _window_stack(table, grid, window)
+    rows, cols, masks, r2 = _window_stack(table, grid, window)
     edges = _footprint_edges(masks)
     height_stack = np.empty(masks.shape)
-    sweeps.gather(heights, nodes_of, height_stack)
+    sweeps.gather(heights, rows, cols, height_stack)
     own = np.empty(masks.shape)  # each asperity's pressure on its window
     if initial_pressure is None:  # Hertz's pressure of the macro forces: its discs lie inside the footprints
         sweeps.hertz_stack(macro.force, radius, r2, dA, masks, True, own)
         pressure = None  # the field is the stack's, scattered where needed
     else:
         pressure = np.array(initial_pressure, dtype=float)
-        sweeps.gather(pressure, nodes_of, own)
+        sweeps.gather(pressure, rows, cols, own)
         own *= masks
     # the pressure off the footprints (an initial_pressure's only): part of the first sweep's change
     off_footprints = 0.0
@@ -237,7 +236,7 @@ def _solve_in_windows(table: AsperityTable, macro: MacroState, law: HertzLaw, E_
     # the convolution at the top of a sweep also serves the previous sweep's stop and the returned fields
     for it in range(1, max_iter + 2):
         if pressure is None:
-            sweeps.scatter_footprints(own, masks, nodes_of, global_op.load())
+            sweeps.scatter_footprints(own, masks, rows, cols, global_op.load())
         else:
             global_op.load()[...] = pressure
             pressure = None
@@ -246,7 +245,7 @@ def _solve_in_windows(table: AsperityTable, macro: MacroState, law: HertzLaw, E_
         old_force = own.sum(axis=(1, 2)) * dA
         if own_displacement is None:
             own_displacement = stack(own)
-        sweeps.local_heights(height_stack, displacement, nodes_of, own_displacement, masks, local, top, low)
+        sweeps.local_heights(height_stack, displacement, rows, cols, own_displacement, masks, local, top, low)
         if force_tol is not None and last is not None:
             contact = own > 0
             # an asperity out of contact that the body now reaches: the law's force at its overlap
@@ -311,13 +310,13 @@ def _solve_in_windows(table: AsperityTable, macro: MacroState, law: HertzLaw, E_
     below, height_sum, height_squares = sweeps.gap_field(displacement, z_top - delta, heights, gap, kept)
     displacement = kept
     pressure = np.empty(grid.shape)
-    sweeps.scatter_footprints(own, masks, nodes_of, pressure)
+    sweeps.scatter_footprints(own, masks, rows, cols, pressure)
     force = own.sum(axis=(1, 2)) * dA
     nodes = np.count_nonzero(own > 0, axis=(1, 2))
-    total, comp, pen, below_on = sweeps.footprint_sums(own, gap, nodes_of, masks)
+    total, comp, pen, below_on = sweeps.footprint_sums(own, gap, rows, cols, masks)
     if below > below_on:  # off the footprints the body must stay clear of the surface
         off = np.ones(grid.shape, dtype=bool)
-        off.ravel()[nodes_of[masks]] = False
+        off.ravel()[_flat_nodes(rows, cols, grid.shape[1])[masks]] = False
         raise ValueError(
             "mean_pressure/penetration: the body reaches the surface between the asperities' footprints (the gap "
             f"there falls to {float(gap[off].min()):.3g}): the load is beyond what separate spherical contacts "
@@ -338,17 +337,23 @@ def _height_scale(total: float, squares: float, count: int) -> float:
     return math.sqrt(variance) if variance > 0 else 1.0
 
 
-def _window_stack(table: AsperityTable, grid: Grid, window: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Flat grid index of every node of every asperity's window, ``(N, w, w)``, the mask of the nodes
-    inside its footprint, and their squared distances from its summit [length^2]. Each window is
-    centred on the grid node nearest its summit and aligned with the grid, wrapped if periodic (else
-    shifted inside the grid)."""
-    shape = (table.count, window, window)
-    nodes_of, masks, r2 = np.empty(shape, np.int64), np.empty(shape, bool), np.empty(shape)
+def _window_stack(table: AsperityTable, grid: Grid, window: int) -> tuple[np.ndarray, ...]:
+    """Every asperity's window: the grid rows and columns of its nodes, ``(N, w)`` each (node ``(k, i, j)`` at
+    ``(rows[k, i], cols[k, j])``), the mask of the nodes inside its footprint and their squared distances from
+    its summit [length^2], ``(N, w, w)``. Each window is centred on the grid node nearest its summit and aligned
+    with the grid, wrapped if periodic (else shifted inside the grid)."""
+    count = table.count
+    rows, cols = np.empty((count, window), np.int64), np.empty((count, window), np.int64)
+    masks, r2 = np.empty((count, window, window), bool), np.empty((count, window, window))
     sweeps.window_nodes(np.ascontiguousarray(table.centers, dtype=float), float(grid.spacing[0]), int(grid.shape[1]),
                         int(window), bool(table.periodic), float(table.length),
-                        np.ascontiguousarray(table.footprint_radius, dtype=float), nodes_of, masks, r2)
-    return nodes_of, masks, r2
+                        np.ascontiguousarray(table.footprint_radius, dtype=float), rows, cols, masks, r2)
+    return rows, cols, masks, r2
+
+
+def _flat_nodes(rows: np.ndarray, cols: np.ndarray, n: int) -> np.ndarray:
+    """The flat grid index of every window node, ``(N, w, w)``, on a grid of ``n`` columns."""
+    return rows[:, :, None] * n + cols[:, None, :]
 
 
 def _coarse_correction(interaction: PointInteraction, slope: np.ndarray, old_force: np.ndarray,
