@@ -123,10 +123,10 @@ def hertz_pressure_field(table: AsperityTable, grid: Grid, force: np.ndarray, co
                          window: int, stack: tuple[np.ndarray, ...] | None = None) -> np.ndarray:
     """Hertz pressure ``p0 sqrt(1 - r^2/a^2)`` of each asperity sampled on the grid and scaled so that
     its nodes carry the force exactly [pressure]. ``stack``: :func:`_window_stack`'s output, if at hand."""
-    rows, cols, _, r2 = _window_stack(table, grid, window) if stack is None else stack
-    local = np.empty(r2.shape)
+    rows, cols, masks, r2 = _window_stack(table, grid, window) if stack is None else stack
+    local = np.empty(r2.shape)  # the whole discs (not cut at the footprints): the force is theirs
     sweeps.hertz_stack(np.asarray(force, dtype=float), np.asarray(contact_radius, dtype=float), r2,
-                       grid.spacing[0] ** 2, r2 < 0, False, local)
+                       grid.spacing[0] ** 2, masks, False, local)
     on = local > 0  # inside each contact disc: the discs lie in disjoint footprints, each node once
     field = np.zeros(grid.shape)
     field.ravel()[_flat_nodes(rows, cols, grid.shape[1])[on]] = local[on]
