@@ -298,7 +298,7 @@ def _gather(rows, cols, gx, gy, mesh, out):
     _kernels(p)[1](rows, cols, gx, gy, widened, out)
 
 
-@functools.lru_cache(maxsize=None)
+@functools.lru_cache(maxsize=16)  # compiled code, one pair per support width in use (a handful)
 def _kernels(p: int):
     """Spreading and gathering compiled for a support of ``p`` nodes a side (a constant of the code, so the
     inner loops unroll: 10^3 asperities at ``p = 9``, 75 -> 50 us spreading and 80 -> 30 us gathering), on a
