@@ -216,12 +216,15 @@ def gmres(operator, preconditioner, b: np.ndarray, x: np.ndarray, tol: float, ma
     ``preconditioner`` maps a 1-D field to a new one. The residual is GMRES's own estimate (exact in exact
     arithmetic); a restart starts from the true residual. The sweeps over the fields are compiled
     (:mod:`._krylov_sweeps`): on small sets numpy's per-call overhead cost as much as the transforms.
-    ``workspace``: a flat buffer of at least ``(2 restart + 1) b.size`` values for the Krylov basis and its
+    From ``x = 0`` the first residual is ``b`` itself (no application). ``workspace``: a flat buffer of at least ``(2 restart + 1) b.size`` values for the Krylov basis and its
     preconditioned directions, kept by the caller across solves (fresh pages cost more to write than the sweeps
     that fill them)."""
-    r, side = operator(x)
-    r = b - r
-    it = 1
+    if x.any():
+        r, side = operator(x)
+        r = b - r
+        it = 1
+    else:  # from zero (a cohesive Newton step): the residual is b, no application
+        r, side, it = b.copy(), 0.0, 0
     beta = np.sqrt(dot(r, r))
     tol = max(tol, relative * beta)
     column = np.empty(restart + 1)
