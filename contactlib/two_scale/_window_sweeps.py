@@ -2,14 +2,13 @@
 
 A stack holds one ``w x w`` window per asperity, ``(N, w, w)``, its node ``(k, i, j)`` at the grid's row
 ``rows[k, i]`` and column ``cols[k, j]`` (wrapped on a periodic grid), and whether that node lies in the
-asperity's footprint (``masks``). The passes are bound by memory traffic (the grid fields and the stacks
-come from memory, not cache): two ``(N, w)`` index arrays instead of one flat index per node (``(N, w, w)``
-int64, as large as a stack) took 3-5 % off the whole two-scale solve. Between its two full-grid
-convolutions and its local solves, a two-scale solve gathers, scatters and reduces these stacks about
-twenty times; as numpy expressions (fancy indexing, ``np.where`` temporaries, masked reductions) that
-bookkeeping took about 20 ms of a 50 ms solve at 10^3 asperities on 700^2 nodes, several times the
-arithmetic. Each function here is one pass. Sums run in a fixed order, so a solve returns the same bits
-every time.
+asperity's footprint (``masks``). Between its two full-grid convolutions and its local solves, a two-scale
+solve gathers, scatters and reduces these stacks about twenty times; as numpy expressions (fancy indexing,
+``np.where`` temporaries, masked reductions) that bookkeeping took about 20 ms of a 50 ms solve at 10^3
+asperities on 700^2 nodes, several times the arithmetic. Each function here is one pass. They are bound by
+memory traffic (the grid fields and the stacks come from memory, not cache): the two ``(N, w)`` index arrays
+instead of one flat index per node (``(N, w, w)`` int64, as large as a stack) took 3-5 % off the whole solve.
+Sums run in a fixed order, so a solve returns the same bits every time.
 """
 
 from __future__ import annotations
