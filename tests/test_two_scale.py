@@ -390,6 +390,8 @@ def test_force_stop_estimates_the_next_sweep():
         one = ts.solve_micro(table, macro, law, E_STAR, interaction, max_iter=1, **kw)
         two = ts.solve_micro(table, macro, law, E_STAR, interaction, max_iter=2, **kw)
         assert one.iterations == 1 and two.iterations == 2 and not one.converged
+        with pytest.raises(ValueError, match="max_iter"):  # at least one sweep: its fields are the answer's
+            ts.solve_micro(table, macro, law, E_STAR, interaction, max_iter=0, **kw)
         actual = np.max(np.abs(two.force - one.force)) / one.force.max()
         assert 1e-4 < actual < 1e-2  # a change worth estimating (2.2e-3, 1.7e-3; estimates 2.3e-3, 2.1e-3)
         assert one.force_change == pytest.approx(actual, rel=0.25)
