@@ -24,6 +24,7 @@ import xarray as xr
 
 from .contact import solve
 from .analysis.friction import reusing_slopes
+from .bodies import reusing_kernels
 from .solvers.recycle import recycling
 from .solvers.state import dot
 
@@ -96,7 +97,7 @@ def solve_speeds(heights, sliding_velocities, *, recycle: bool = False, **kwargs
     if "sliding_velocity" in kwargs:
         raise ValueError("sliding_velocity: give the path as sliding_velocities")
     speeds, pressures, out = [], [], []
-    with recycling() if recycle else contextlib.nullcontext(), reusing_slopes():
+    with recycling() if recycle else contextlib.nullcontext(), reusing_slopes(), reusing_kernels():
         for velocity in sliding_velocities:
             speed = float(np.linalg.norm(np.atleast_1d(np.asarray(velocity, dtype=float))))
             if not (np.isfinite(speed) and speed > 0):
