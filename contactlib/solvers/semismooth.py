@@ -119,6 +119,7 @@ def solve_semismooth(
     unit, unit_approach = np.zeros(n), None  # displacement control: the answer to a unit load on the set
     iterations, residual, inner_tol = 0, np.inf, 1e-3
     seen: set[bytes] = set()
+    floor = FLOOR_FRACTION * tol  # a set solver's tightest changed-set tolerance; tol / 16 once the sets cycle
     state = None
     image = None  # M p of the last set's answer, when the set holds: the next set solve's start, known
     for k in range(1, MAX_SETS + 1):
@@ -164,6 +165,7 @@ def solve_semismooth(
             continue
         key = following.tobytes()
         if key in seen:  # a cycle of sets: tighter solves break ties made by round-off
+            floor = tol / 16
             inner_tol = max(tol / 16, inner_tol / 10)
         seen.add(key)
         active = following
@@ -173,7 +175,7 @@ def solve_semismooth(
             raise ValueError(f"penetration {penetration!r} reaches full contact on this body: the load is then "
                              "undetermined; give mean_pressure instead")
         if set_solver is not None:  # inexact Newton: the set solves follow the outer residual
-            inner_tol = max(FLOOR_FRACTION * tol, min(inner_tol, INNER_FORCING * residual))
+            inner_tol = max(floor, min(inner_tol, INNER_FORCING * residual))
         else:
             inner_tol = min(inner_tol, max(tol / 16, 1e-3 * changed / n))
     return state
