@@ -34,6 +34,8 @@ enough that it is positive (:data:`SHIFT_MARGIN`).
 
 from __future__ import annotations
 
+import contextlib
+import contextvars
 import dataclasses
 import math
 from dataclasses import dataclass
@@ -46,8 +48,7 @@ from .grid import Grid
 from .kernels.layer import BASES, zero_mode_compliance
 from .kernels.elastic import halfspace_love_multiplier
 from .kernels.tensor import SurfaceGreenTensor, halfspace_coupling_influence, surface_green_tensor
-from .kernels.viscoelastic import (modulus_deviations, real_where_self_conjugate, sliding_factor,
-                                   steady_sliding_factor)
+from .kernels.viscoelastic import real_where_self_conjugate, sliding_factor, sliding_factor_and_deviations
 from .materials import Elastic
 from .operators import Compliance, Coupling
 
@@ -136,7 +137,7 @@ def body_model(grid: Grid, *, material, layer: Layer | None, friction: float, di
         # the frictionless elastic half-space: no tensor built, none held during the solve
         attrs.update(body="half-space", coupling="none", model="half-space" + note_material)
         return BodyModel(Compliance(grid, E_star=E_star, kernel=kernel, periodic=True), None, None, attrs)
-    half = surface_green_tensor(grid, E, nu)
+    half = _halfspace_tensor(grid, E, nu)
     if kernel == "love":  # Love's uniform elements (frictionless half-space only: checked by the caller)
         aliased = None if factor is None else partial(sliding_factor, material, velocity)
         love = halfspace_love_multiplier(grid, E_star, factor=aliased)  # each alias at its own frequency
@@ -160,15 +161,22 @@ def body_model(grid: Grid, *, material, layer: Layer | None, friction: float, di
                 tensor.normal.flat[0] = zero
     if E != material.E0 and tensor.normal.flat[0] > 0:
         # an elastic shortcut at the glassy modulus: the uniform compression does not move, it is relaxed
+        # (on a copy: the tensor may be a reused one, :func:`reusing_kernels`)
+        tensor = dataclasses.replace(tensor, normal=tensor.normal.copy())
         tensor.normal.flat[0] *= E / material.E0
     total = tensor.normal.astype(complex)
     if friction > 0:
         total += friction * tensor.coupling_multiplier(grid, direction)
     if factor is not None and kernel != "love":
         total *= factor
-        tensor = tensor.scaled(factor)
+        # frictionless, ``total`` is the scaled normal entry (a complex times a real or a complex with a zero
+        # imaginary part: the same values)
+        tensor = tensor.scaled(factor, normal=total if friction == 0 else None)
     symmetric, skew = total.real, total.imag
-    monotone = bool(symmetric[nonzero].min() > 0)
+    # the non-zero wavevectors are every entry but the first of the rfft layout: slices, not masks (a tenth of
+    # the cost, once per speed of a sweep)
+    symmetric_q, skew_q = symmetric.reshape(-1)[1:], skew.reshape(-1)[1:]
+    monotone = bool(symmetric_q.min() > 0)
     shift = 1.0
     if not monotone:
         worst = order_two_minors(grid, total)
@@ -190,7 +198,7 @@ def body_model(grid: Grid, *, material, layer: Layer | None, friction: float, di
             f"the symmetric part of the normal operator is negative at {int(np.count_nonzero(symmetric[nonzero] <= 0))} "
             "long wave(s) (friction coupling times the material's lag): uniqueness is not implied by monotonicity; "
             f"the order-1 and order-2 principal minors are positive (min {worst:.3g})")
-    ratio = float(np.abs(skew[nonzero] / symmetric[nonzero]).max()) if (friction > 0 or factor is not None) else 0.0
+    ratio = float(np.abs(skew_q / symmetric_q).max()) if (friction > 0 or factor is not None) else 0.0
     coupled = ratio > limit or not monotone
     transfer = None if (tensor is half and factor is None) else symmetric
     coupling = None
@@ -217,6 +225,38 @@ def body_model(grid: Grid, *, material, layer: Layer | None, friction: float, di
     return BodyModel(compliance, coupling, tensor, attrs, factor)
 
 
+_HALFSPACE: contextvars.ContextVar[list | None] = contextvars.ContextVar("halfspace_tensor", default=None)
+
+
+@contextlib.contextmanager
+def reusing_kernels():
+    """Within this context (this thread's), :func:`body_model` keeps the last half-space Green's tensor and
+    reuses it for the same grid and elastic constants: a speed sweep builds it once (four grid-sized arrays,
+    about 1 ms at 512^2 per speed). Its arrays are read-only while reused. Scoped so that no grid-sized array
+    outlives the sweep."""
+    token = _HALFSPACE.set([])
+    try:
+        yield
+    finally:
+        _HALFSPACE.reset(token)
+
+
+def _halfspace_tensor(grid: Grid, E: float, nu: float) -> SurfaceGreenTensor:
+    """:func:`surface_green_tensor` of the half-space, from the :func:`reusing_kernels` store when one is open
+    and holds the same grid and constants."""
+    store = _HALFSPACE.get()
+    if store is None:
+        return surface_green_tensor(grid, E, nu)
+    key = (tuple(grid.shape), tuple(float(length) for length in grid.lengths), float(E), float(nu))
+    if store and store[0][0] == key:
+        return store[0][1]
+    tensor = surface_green_tensor(grid, E, nu)
+    for array in (tensor.normal, tensor.coupling, tensor.inplane, tensor.antiplane):
+        array.flags.writeable = False
+    store[:] = [(key, tensor)]
+    return tensor
+
+
 def _material_factor(grid: Grid, material, velocity, limit: float, attrs: dict):
     """``(factor, E, note)``: the viscoelastic factor of the multipliers (None where the scene is elastic
     to ``limit``: :func:`contactlib.kernels.viscoelastic.modulus_deviation`), the modulus the elastic
@@ -228,7 +268,7 @@ def _material_factor(grid: Grid, material, velocity, limit: float, attrs: dict):
     if not moving:
         attrs["material_model"] = "elastic, relaxed modulus E0 (no sliding: the material is relaxed)"
         return None, material.E0, ", viscoelastic body at rest: relaxed (E0)"
-    relaxed, glassy = modulus_deviations(grid, material, velocity, (material.E0, material.E_inf))
+    factor, (relaxed, glassy) = sliding_factor_and_deviations(grid, material, velocity, (material.E0, material.E_inf))
     if relaxed <= limit:
         attrs["material_model"] = (f"elastic, relaxed modulus E0: |E*(q.V) - E0| <= {relaxed:.1e} E0 on the grid, "
                                    f"<= {REDUCTION_FRACTION} tol")
@@ -238,7 +278,7 @@ def _material_factor(grid: Grid, material, velocity, limit: float, attrs: dict):
                                    f"grid, <= {REDUCTION_FRACTION} tol")
         return None, material.E_inf, ", viscoelastic body modelled elastic (E_inf: fast sliding)"
     attrs["material_model"] = "viscoelastic steady sliding (complex modulus at q.V)"
-    return steady_sliding_factor(grid, material, velocity), material.E0, ", viscoelastic steady sliding"
+    return factor, material.E0, ", viscoelastic steady sliding"
 
 
 def order_two_minors(grid: Grid, total: np.ndarray) -> float:

@@ -307,16 +307,17 @@ class _Setup(NonSymmetricSolve):
 
     def label(self, state: ContactState, wall: float, *, length_unit: str, pressure_unit: str,
               tol: float | None = None) -> xr.Dataset:
+        extra = {}  # built with the fields: one Dataset construction, no merge per addition
+        if state.outer_iterations:
+            extra["outer_iterations"] = xr.Variable((), state.outer_iterations, attrs_for("outer_iterations"))
+        if self.attrs["friction"] > 0 or "sliding_velocity" in self.attrs:
+            extra.update(self._friction_variables(state, length_unit, pressure_unit))
         ds = to_dataset(state, dims=self.dims, coords=self.coords, length_unit=length_unit,
-                        pressure_unit=pressure_unit)
+                        pressure_unit=pressure_unit, extra=extra)
         ds.attrs.update({"solver": state.solver, **self.attrs, "converged": int(state.converged), "wall_time": wall,
                          "contactlib_version": __version__, "window_lengths": list(self.grid.lengths)})
         if tol is not None:
             ds.attrs["tol"] = tol
-        if state.outer_iterations:
-            ds["outer_iterations"] = ((), state.outer_iterations, attrs_for("outer_iterations"))
-        if ds.attrs["friction"] > 0 or "sliding_velocity" in ds.attrs:
-            self._label_friction(ds, state, length_unit, pressure_unit)
         if np.all(state.pressure > 0):
             ds.attrs["full_contact"] = 1
             ds.attrs["full_contact_message"] = ("full contact: every element carries pressure, so the contact area "
@@ -329,17 +330,15 @@ class _Setup(NonSymmetricSolve):
                                    pressure_unit=pressure_unit)
         return ds
 
-    def _label_friction(self, ds: xr.Dataset, state: ContactState, length_unit: str, pressure_unit: str) -> None:
+    def _friction_variables(self, state: ContactState, length_unit: str, pressure_unit: str) -> dict:
         """The tangential traction ``mu_c p s`` and (periodic) the tangential displacement it and the
-        pressure cause; ``mu_a`` and ``mu = mu_c + mu_a``."""
-        mu, direction = ds.attrs["friction"], ds.attrs["sliding_direction"]
+        pressure cause; ``mu_a`` and ``mu = mu_c + mu_a``; sliding, the dissipated power (name: variable)."""
+        mu, direction = self.attrs["friction"], self.attrs["sliding_direction"]
         axes = ("x", "y")[: self.grid.dim]
         components = (np.cos(direction), np.sin(direction))[: self.grid.dim]
-        tractions = [mu * c * state.pressure for c in components]
-        # one update, not a Dataset.__setitem__ per variable: each merges the whole dataset (about 1 ms at 2^14
-        # points, a tenth of a frictionless solve)
+        tractions = [mu * c * state.pressure for c in components] if mu > 0 else []
         variables = {}
-        for axis, traction in zip(axes, tractions if mu > 0 else ()):
+        for axis, traction in zip(axes, tractions):
             name = f"tangential_traction_{axis}"
             variables[name] = xr.Variable(self.dims, traction, attrs_for(name, length=length_unit,
                                                                         pressure=pressure_unit))
@@ -355,13 +354,13 @@ class _Setup(NonSymmetricSolve):
         variables["friction_coefficient_interlocking"] = xr.Variable((), mu_a,
                                                                      attrs_for("friction_coefficient_interlocking"))
         variables["friction_coefficient"] = xr.Variable((), mu + mu_a, attrs_for("friction_coefficient"))
-        if "sliding_velocity" in ds.attrs:  # elastic models dissipate nothing: their tensor is real
-            velocity = ds.attrs["sliding_velocity"]
+        if "sliding_velocity" in self.attrs:  # elastic models dissipate nothing: their tensor is real
+            velocity = self.attrs["sliding_velocity"]
             power = 0.0 if self.body.factor is None else traction_power(
                 self.grid, state.pressure, self.body.tensor, velocity, friction=mu, direction=direction)
             variables["dissipated_power"] = xr.Variable((), power, attrs_for("dissipated_power", length=length_unit,
                                                                              pressure=pressure_unit))
-        ds.update(variables)
+        return variables
 
     def check(self, state: ContactState, ds: xr.Dataset) -> None:
         """Refuse a footprint cut by the window edge; raise :class:`ConvergenceError` if unconverged (first,

@@ -84,9 +84,11 @@ def attrs_for(name: str, *, length: str = "m", pressure: str = "Pa") -> dict[str
     return {"units": entry["units"].format(length=length, pressure=pressure), "long_name": entry["long_name"]}
 
 
-def to_dataset(state, *, dims, coords, length_unit="m", pressure_unit="Pa") -> xr.Dataset:
+def to_dataset(state, *, dims, coords, length_unit="m", pressure_unit="Pa", extra=None) -> xr.Dataset:
     """Label a solver's :class:`contactlib.solvers.ContactState` as a CF-style Dataset: its fields on
-    ``dims``, its scalars, units and long names from :data:`VARIABLES`."""
+    ``dims``, its scalars, units and long names from :data:`VARIABLES`; ``extra`` (name: variable), the
+    caller's variables after them, in the same construction (each later ``Dataset.update`` merges the
+    whole dataset: about 1 ms at 512^2)."""
     def a(name):
         return attrs_for(name, length=length_unit, pressure=pressure_unit)
 
@@ -100,6 +102,7 @@ def to_dataset(state, *, dims, coords, length_unit="m", pressure_unit="Pa") -> x
     }
     data = dict(fields)
     data.update({k: ((), v, a(k)) for k, v in scalars.items()})
+    data.update(extra or {})
     ds = xr.Dataset(data, coords=coords)
     for d in dims:
         if not ds[d].attrs:

@@ -7,11 +7,14 @@ they are unequally spaced), clipped at zero (which also predicts the contact set
 carry their Krylov vectors from speed to speed (:mod:`.solvers.recycle`). On a 256^2 rough surface, 30 speeds over
 zeta = V tau q0 1e-3..1e3 (E_inf/E0 = 10, 10 % contact, tol 1e-8), GMRES iterations in all: 938 from the last
 answer, 884 from the secant, 816 from the geometric prediction, 711 with the carried vectors too (and the held
-set's known start image, :func:`.solvers.semismooth.solve_semismooth`). In the transition (zeta 3e-3..0.3) the
-pressure moves 30-40 % between neighbouring speeds (the patches shift and the area falls from 9 % to 1.2 %), no
-prediction is within 25 % there, and each speed still takes 8-10 contact-set updates and 35-57 iterations:
-that is where the iterations of a sweep go. Every solve reaches the tolerance asked (a warm start changes the
-iterations, not the answer).
+set's known start image, :func:`.solvers.semismooth.solve_semismooth`); with the held and the last sets solved to
+``tol / 2`` instead of ``tol / 16`` (:data:`.solvers.semismooth.HELD_FRACTION`), 839 from the last answer, 726
+from the prediction, 661 with the carried vectors (1050 from the prediction at 512^2, 963 carried). In the
+transition (zeta 3e-3..0.3) the pressure moves 30-40 % between neighbouring speeds (the patches shift and the
+area falls from 9 % to 1.2 %), no prediction is within 25 % there, and each speed still takes 6-9 contact-set
+updates and 28-47 iterations: that is where the iterations of a sweep go. Every solve reaches the tolerance asked
+(a warm start changes the iterations, not the answer). Within :func:`solve_speeds` what does not depend on the
+speed is built once (:func:`.bodies.reusing_kernels`, :func:`.analysis.friction.reusing_slopes`).
 """
 
 from __future__ import annotations
@@ -24,6 +27,7 @@ import xarray as xr
 
 from .contact import solve
 from .analysis.friction import reusing_slopes
+from .bodies import reusing_kernels
 from .solvers.recycle import recycling
 from .solvers.state import dot
 
@@ -80,7 +84,8 @@ def solve_speeds(heights, sliding_velocities, *, recycle: bool = False, **kwargs
     recycle : bool
         Carry the GMRES set solves' Krylov vectors from speed to speed (:mod:`contactlib.solvers.recycle`):
         the same answers, 8-10 % fewer GMRES iterations over a 30-speed sweep, but no less time at 512^2 (the
-        correction's own cost eats the saving), hence off by default.
+        correction's own cost eats the saving: 963 against 1050 iterations, 26.4x against 25.7x one elastic
+        solve), hence off by default.
     **kwargs
         The other arguments of :func:`contactlib.solve` (``material``, ``mean_pressure``, ``tol``, ...), the
         same at every speed; not ``initial_pressure`` (the path supplies it).
@@ -96,7 +101,7 @@ def solve_speeds(heights, sliding_velocities, *, recycle: bool = False, **kwargs
     if "sliding_velocity" in kwargs:
         raise ValueError("sliding_velocity: give the path as sliding_velocities")
     speeds, pressures, out = [], [], []
-    with recycling() if recycle else contextlib.nullcontext(), reusing_slopes():
+    with recycling() if recycle else contextlib.nullcontext(), reusing_slopes(), reusing_kernels():
         for velocity in sliding_velocities:
             speed = float(np.linalg.norm(np.atleast_1d(np.asarray(velocity, dtype=float))))
             if not (np.isfinite(speed) and speed > 0):

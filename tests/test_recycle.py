@@ -65,21 +65,23 @@ def test_recycling_block_scopes_the_space():
 
 def test_recycled_speeds_equal_cold_solves():
     """Speeds where the contact set settles (zeta = V tau q0 from 1 to 300): the carried vectors are used, the
-    answers agree with cold solves within 1e-6 (pressure, relative L2; friction coefficient), and the path
-    takes fewer GMRES iterations than without them."""
+    answers agree with cold solves within 1e-6 (pressure, relative L2; friction coefficient, relative to the
+    largest of the path: it crosses zero near zeta = 200, where a relative error of tol-sized answers exceeds
+    1e-5), and the path takes fewer GMRES iterations than without them."""
     h = contactlib.surfaces.self_affine(64, hurst=0.8, q_roll=2, q_cutoff=8, rms_slope=0.1, seed=3)
     velocities = [(zeta / (2 * np.pi), 0.0) for zeta in np.logspace(0, 2.5, 8)]
     with recycling() as space:
         path = contactlib.solve_speeds(h, velocities, material=SLS, mean_pressure=0.02, tol=1e-8, recycle=False)
     assert space.uses > 5
     plain = contactlib.solve_speeds(h, velocities, material=SLS, mean_pressure=0.02, tol=1e-8, recycle=False)
+    largest = max(abs(float(o.friction_coefficient_interlocking)) for o in path)
     for velocity, warm in zip(velocities, path):
         cold = contactlib.solve(h, material=SLS, mean_pressure=0.02, sliding_velocity=velocity, tol=1e-8)
         assert warm.residual <= 1e-8
         dp = np.linalg.norm(warm.pressure.values - cold.pressure.values) / np.linalg.norm(cold.pressure.values)
         assert dp < 1e-6
         assert float(warm.friction_coefficient_interlocking) == pytest.approx(
-            float(cold.friction_coefficient_interlocking), rel=1e-6)
+            float(cold.friction_coefficient_interlocking), abs=1e-6 * largest)
     assert sum(int(o.iterations) for o in path) < sum(int(o.iterations) for o in plain)
     again = contactlib.solve_speeds(h, velocities, material=SLS, mean_pressure=0.02, tol=1e-8, recycle=True)
     assert [int(o.iterations) for o in again] == [int(o.iterations) for o in path]  # the same carried space

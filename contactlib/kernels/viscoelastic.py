@@ -22,6 +22,9 @@ The ``q = 0`` mode does not move: it is relaxed (``factor = 1``).
 
 from __future__ import annotations
 
+import itertools
+
+import numba
 import numpy as np
 
 from ..grid import Grid
@@ -48,28 +51,58 @@ def steady_sliding_factor(grid: Grid, material, velocity) -> np.ndarray:
     The modes that are their own mirror image (every index 0 or Nyquist) keep the real part: a real
     transform cannot carry an imaginary multiplier there (the inverse rfft drops it).
     """
-    return real_where_self_conjugate(grid, material.E0 / material.complex_modulus(sliding_frequency(grid, velocity)))
+    return sliding_factor_and_deviations(grid, material, velocity, ())[0]
+
+
+def sliding_factor_and_deviations(grid: Grid, material, velocity, references) -> tuple[np.ndarray, tuple]:
+    """``(steady_sliding_factor, modulus_deviations)`` from one evaluation of the complex modulus: a compiled
+    pass over the grid (:func:`_modulus_pass`) instead of about fifteen numpy ones, two of them over the
+    complex modulus. ``references`` [pressure] as :func:`modulus_deviations`."""
+    omega = np.ascontiguousarray(sliding_frequency(grid, velocity), dtype=float).reshape(-1)
+    factor = np.empty(omega.size, dtype=complex)
+    moduli = np.array([E for E, _ in material.prony], dtype=float)
+    taus = np.array([tau for _, tau in material.prony], dtype=float)
+    refs = np.array(references, dtype=float)
+    deviations = _modulus_pass(omega, float(material.E0), moduli, taus, refs, factor)
+    factor = real_where_self_conjugate(grid, factor.reshape(grid.spectral_shape()))
+    return factor, tuple(float(d) for d in deviations)
+
+
+@numba.njit(cache=True, nogil=True, boundscheck=False)
+def _modulus_pass(omega, E0, moduli, taus, references, factor):
+    """``factor = E0 / E*(omega)`` (a Prony series: ``E* = E0 + sum_k E_k i omega tau_k / (1 + i omega tau_k)``),
+    and ``max |E* - r| / r`` over every entry but the first (``q = 0`` in the rfft layout) for each reference
+    ``r``, in one pass with the real and imaginary parts kept apart."""
+    deviations = np.zeros(references.size)
+    for i in range(omega.size):
+        re = E0
+        im = 0.0
+        for k in range(moduli.size):
+            x = omega[i] * taus[k]
+            d = moduli[k] / (1.0 + x * x)
+            re += d * x * x
+            im += d * x
+        norm = re * re + im * im
+        factor[i] = complex(E0 * re / norm, -E0 * im / norm)
+        if i > 0:
+            for j in range(references.size):
+                dev = np.sqrt((re - references[j]) ** 2 + im * im) / references[j]
+                if dev > deviations[j]:
+                    deviations[j] = dev
+    return deviations
 
 
 def real_where_self_conjugate(grid: Grid, multiplier: np.ndarray) -> np.ndarray:
     """``multiplier`` with its real part kept on the modes that are their own mirror image (in place)."""
-    mask = _self_conjugate(grid)
-    multiplier[mask] = multiplier[mask].real
+    for index in _self_conjugate(grid):
+        multiplier[index] = multiplier[index].real
     return multiplier
 
 
-def _self_conjugate(grid: Grid) -> np.ndarray:
-    """Mask of the rfft layout's modes equal to their own mirror image."""
-    masks = []
-    for axis, n in enumerate(grid.shape):
-        size = grid.spectral_shape()[axis]
-        index = np.arange(size)
-        mask = (index == 0) | ((n % 2 == 0) & (index == n // 2))
-        masks.append(mask.reshape([-1 if a == axis else 1 for a in range(grid.dim)]))
-    out = masks[0]
-    for m in masks[1:]:
-        out = out & m
-    return np.broadcast_to(out, grid.spectral_shape())
+def _self_conjugate(grid: Grid) -> list[tuple[int, ...]]:
+    """The rfft layout's modes equal to their own mirror image (every index 0 or Nyquist): at most ``2^dim``."""
+    per_axis = [(0,) if n % 2 else (0, n // 2) for n in grid.shape]
+    return list(itertools.product(*per_axis))
 
 
 def modulus_deviation(grid: Grid, material, velocity, reference: float) -> float:
@@ -83,9 +116,4 @@ def modulus_deviation(grid: Grid, material, velocity, reference: float) -> float
 def modulus_deviations(grid: Grid, material, velocity, references) -> tuple[float, ...]:
     """:func:`modulus_deviation` from each of ``references`` [pressure], the complex modulus evaluated once
     (it is most of the cost: one per speed of a sweep instead of two)."""
-    omega = sliding_frequency(grid, velocity)
-    nonzero = grid.wavenumber() > 0
-    if not nonzero.any():
-        return tuple(0.0 for _ in references)
-    modulus = material.complex_modulus(omega[nonzero])
-    return tuple(float(np.abs(modulus - reference).max() / reference) for reference in references)
+    return sliding_factor_and_deviations(grid, material, velocity, references)[1]

@@ -68,9 +68,8 @@ def loss_dominated(factor: np.ndarray | None) -> bool:
     elastic body) is skew beyond :data:`SPLIT_ABOVE` at some non-zero wavevector."""
     if factor is None:
         return False
-    nonzero = np.ones(factor.shape, dtype=bool)
-    nonzero.flat[0] = False
-    return float(np.max(np.abs(factor[nonzero].imag) / factor[nonzero].real)) > SPLIT_ABOVE
+    nonzero = factor.reshape(-1)[1:]  # every wavevector but q = 0 (a slice: no masked copy)
+    return float(np.max(np.abs(nonzero.imag) / nonzero.real)) > SPLIT_ABOVE
 
 
 def fourier_multiplier(compliance, coupling=None) -> np.ndarray:
