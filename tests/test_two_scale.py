@@ -665,6 +665,28 @@ def test_finite_contact_size_halves_the_macro_error_of_a_dense_field():
     assert errors[False][1] > 1e-2 and errors[True][1] < 2e-3
 
 
+def test_finite_size_joins_the_interactions_own_pair_loop():
+    """The finite-size term in the Newton steps joins the Ewald operator's pair weights (one pair loop a product),
+    for the accurate operator and its coarser copy alike, and the joined product equals the operator's plus the
+    term's own pair sum."""
+    from contactlib.two_scale.interaction import PointInteraction, add_pair_products
+    from contactlib.two_scale.macro import FiniteSize
+
+    field = ts.random_asperity_field(200, coverage=0.4, nodes_per_spacing=22, seed=0)
+    table = ts.asperity_table(field)
+    term = FiniteSize(table, E_STAR)
+    rng = np.random.default_rng(2)
+    forces, radius_squared = rng.uniform(0.5, 1.5, table.count), rng.uniform(0.5, 1.5, table.count) * 1e-4
+    accurate = PointInteraction(table, E_STAR, accuracy=1e-5)
+    for operator in (accurate, accurate.coarser(1e-3)):
+        joined = term.corrected(operator, radius_squared)
+        assert isinstance(joined, PointInteraction)
+        expected = operator(forces)
+        k, l, _ = table.neighbour_pairs(table.neighbour_reach)
+        add_pair_products(k, l, term.weights(radius_squared), forces, expected)
+        assert np.max(np.abs(joined(forces) - expected)) < 1e-13 * np.max(np.abs(expected))
+
+
 def test_finite_size_far_pairs_mean_field_against_the_image_sum():
     """The finite-size term's pairs beyond the Ewald reach enter as a mean field (the continuum of summits):
     against the exact sum over those pairs and their periodic images (to 8 windows each side), for random

@@ -132,7 +132,9 @@ class PointInteraction:
         self.method = "ewald"
         k, l, r = table.neighbour_pairs(cutoff)
         # the short-range pairs as a list for a numba kernel: no sparse matrix to sort and build (0.7 ms at 10^3)
-        self._pair_k, self._pair_l = np.asarray(k, dtype=np.int64), np.asarray(l, dtype=np.int64)  # the table's
+        # the table's own arrays (np.asarray with a dtype returns a new view even when it matches, and
+        # with_pair_weights recognises the pairs by identity)
+        self._pair_k, self._pair_l = (v if v.dtype == np.int64 else v.astype(np.int64) for v in (k, l))
         self._pair_w = erfc(alpha * r) / (math.pi * self.E_star * r)
         self._shift = -2.0 / (math.sqrt(math.pi) * alpha * L * L * self.E_star)
         self_term = -2.0 * alpha / (math.pi**1.5 * self.E_star)
