@@ -120,7 +120,7 @@ class FiniteSize:
     def __init__(self, table: AsperityTable, E_star: float):
         k, l, r = table.neighbour_pairs(table.neighbour_reach)  # the Ewald sum's pairs: no second query
         self._k, self._l = k, l
-        self._g = (2.0 / 15.0) / (math.pi * E_star * r**3)
+        self._g = (2.0 / 15.0) / (math.pi * E_star * (r * r * r))  # numpy's r**3 is a pow: 25x slower
         # the far pairs' mean field, per unit of <a^2 P>: a non-periodic field's far side is not a continuum
         self._tail = (2.0 / 15.0) / (math.pi * E_star) * 2 * math.pi / (table.length**2 * table.neighbour_reach) \
             if table.periodic else 0.0
