@@ -195,7 +195,7 @@ def body_model(grid: Grid, *, material, layer: Layer | None, friction: float, di
         shift = max(1.0, SHIFT_MARGIN * float(np.max(-symmetric[nonzero] / np.maximum(np.abs(skew[nonzero]), 1e-300))))
         attrs["monotone"] = 0
         attrs["monotone_message"] = (
-            f"the symmetric part of the normal operator is negative at {int(np.count_nonzero(symmetric[nonzero] <= 0))} "
+            f"the symmetric part of the normal operator is negative at {int(np.count_nonzero(symmetric_q <= 0))} "
             "long wave(s) (friction coupling times the material's lag): uniqueness is not implied by monotonicity; "
             f"the order-1 and order-2 principal minors are positive (min {worst:.3g})")
     ratio = float(np.abs(skew_q / symmetric_q).max()) if (friction > 0 or factor is not None) else 0.0

@@ -131,6 +131,25 @@ def test_reduction_rule_compares_the_complex_modulus():
     assert deviation == pytest.approx((SLS.E_inf - SLS.E0) * 2 * np.pi * 32 * V, rel=1e-3)
 
 
+def test_compiled_factor_and_deviations_equal_the_materials_complex_modulus():
+    """The compiled per-speed pass (:func:`sliding_factor_and_deviations`) sums the Prony series itself: against
+    ``E0 / material.complex_modulus`` on the grid and the deviations from it, for a three-branch material on an odd
+    and an even 2D grid at an oblique speed."""
+    from contactlib.kernels.viscoelastic import sliding_factor_and_deviations, sliding_frequency
+
+    material = Viscoelastic(E0=2.0, prony=[(5.0, 0.01), (30.0, 0.3), (100.0, 7.0)], nu=0.4)
+    for shape in ((33, 20), (32, 48)):
+        grid = Grid(shape, (1.0, 1.5))
+        velocity = (0.7, -0.2)
+        factor, deviations = sliding_factor_and_deviations(grid, material, velocity, (material.E0, material.E_inf))
+        modulus = material.complex_modulus(sliding_frequency(grid, velocity))
+        expected = real_where_self_conjugate(grid, material.E0 / modulus)
+        assert np.max(np.abs(factor - expected)) < 1e-14
+        rest = modulus.reshape(-1)[1:]  # every wavevector but q = 0
+        for deviation, reference in zip(deviations, (material.E0, material.E_inf)):
+            assert deviation == pytest.approx(float(np.abs(rest - reference).max()) / reference, rel=1e-13)
+
+
 # ---- sign: the pressure leans to the leading edge -----------------------------------------------------
 
 def cylinder(n=2048, length=1.0, radius=0.5):

@@ -158,9 +158,10 @@ class ComplexCompliance:
                      max_iter: int, image: np.ndarray | None = None) -> tuple[np.ndarray, float, int]:
         """``(p on the set, approach, iterations)``: GMRES for ``M_AA p = hp_A + approach``, ``sum p = total``,
         from ``start`` (moved to the load), until the rms of the centred gap on the set is at most ``tol``
-        [length] (or :data:`FORCING` times its initial value while the set still moves, :data:`SETTLED`). ``hp`` [length] is the flat height field measured down from its top (``<= 0``).
-        ``image`` [length], when given: ``M start`` on the set, already known (a held set, whose ``start`` carries the
-        load: the Newton loop's last convolution), which saves the first application (not counted)."""
+        [length] (or :data:`FORCING` times its initial value while the set still moves, :data:`SETTLED`). ``hp``
+        [length] is the flat height field measured down from its top (``<= 0``). ``image`` [length], when given:
+        ``M start`` on the set, already known (a held set, whose ``start`` carries the load: the Newton loop's last
+        convolution), which saves the first application (not counted)."""
         n_a = index.size
         start = np.where(np.isfinite(start), start, 0.0)
         p = start + (total - start.sum()) / n_a
@@ -214,9 +215,9 @@ def gmres(operator, preconditioner, b: np.ndarray, x: np.ndarray, tol: float, ma
     ``preconditioner`` maps a 1-D field to a new one. The residual is GMRES's own estimate (exact in exact
     arithmetic); a restart starts from the true residual. The sweeps over the fields are compiled
     (:mod:`._krylov_sweeps`): on small sets numpy's per-call overhead cost as much as the transforms.
-    From ``x = 0`` the first residual is ``b`` itself (no application). ``workspace``: a flat buffer of at least ``(2 restart + 1) b.size`` values for the Krylov basis and its
-    preconditioned directions, kept by the caller across solves (fresh pages cost more to write than the sweeps
-    that fill them)."""
+    From ``x = 0`` the first residual is ``b`` itself (no application). ``workspace``: a flat buffer of at least
+    ``(2 restart + 1) b.size`` values for the Krylov basis and its preconditioned directions, kept by the caller
+    across solves (fresh pages cost more to write than the sweeps that fill them)."""
     if x.any():
         r, side = operator(x)
         r = b - r

@@ -212,7 +212,8 @@ def solve(
     if macro_tol is None:
         outer = force_tol if force_tol is not None else tol
         valid = isinstance(outer, (int, float)) and math.isfinite(outer) and outer > 0  # else refused below
-        macro_tol = min(max(START_TOL_FACTOR * outer, START_TOL_MIN), MACRO_TOL) if scale == "two-scale" and valid else MACRO_TOL
+        macro_tol = (min(max(START_TOL_FACTOR * outer, START_TOL_MIN), MACRO_TOL) if scale == "two-scale" and valid
+                     else MACRO_TOL)
     for name, value in (("tol", tol), ("macro_tol", macro_tol)) + ((("force_tol", force_tol),) if force_tol is not None
                                                                     else ()):
         if not (isinstance(value, (int, float)) and math.isfinite(value) and value > 0):

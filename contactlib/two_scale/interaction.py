@@ -246,8 +246,8 @@ def _gaussian_factors(centers: np.ndarray, L: float, m: int, s: float, support: 
     """The periodised Gaussian ``exp(-r^2/2s^2) / (2 pi s^2)`` of each centre on the mesh nodes ``i L / m``
     within ``support s`` along each axis, in its separable form: mesh rows ``(N, P)`` (wrapped), each
     block's first column ``(N,)`` and the 1D factors ``gx``, ``gy`` ``(N, P)``; the node
-    ``(rows[k, i], (cols[k] + j) mod m)`` weighs ``gx[k, i] gy[k, j]``. :func:`_spread` and :func:`_gather` read ``4 P`` numbers per asperity where
-    the sparse matrix of :func:`_gaussian_gather` holds ``2 P^2``."""
+    ``(rows[k, i], (cols[k] + j) mod m)`` weighs ``gx[k, i] gy[k, j]``. :func:`_spread` and :func:`_gather` read
+    ``4 P`` numbers per asperity where the sparse matrix of :func:`_gaussian_gather` holds ``2 P^2``."""
     h = L / m
     reach = support * s / h
     p = int(math.floor(2 * reach + 1e-9)) + 1  # nodes within [c - reach h, c + reach h] along an axis
