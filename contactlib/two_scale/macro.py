@@ -130,20 +130,25 @@ class FiniteSize:
         return self._g * (radius_squared[self._k] + radius_squared[self._l])
 
     def corrected(self, interaction, radius_squared: np.ndarray):
-        """``T + S(a)`` at fixed contact radii: for an Ewald interaction over the same pairs, a copy with the term
-        in its pair weights (one pair loop a product, not two), else a wrapper."""
-        weights = self.weights(radius_squared)
-        combined = interaction.with_pair_weights(self._k, self._l, weights) \
+        """``T + S(a)`` over the neighbour pairs at fixed contact radii: for an Ewald interaction over the same
+        pairs, a copy with the term in its pair loop (one pair loop a product, not two; the weights formed there),
+        else a wrapper."""
+        combined = interaction.with_pair_weights(self._k, self._l, self._g, radius_squared) \
             if isinstance(interaction, PointInteraction) else None
-        return combined if combined is not None else _Corrected(interaction, self._k, self._l, weights)
+        return combined if combined is not None else \
+            _Corrected(interaction, self._k, self._l, self.weights(radius_squared))
+
+    def add_far_pairs(self, radius_squared: np.ndarray, forces: np.ndarray, out: np.ndarray) -> None:
+        """``out +=`` the far pairs' mean field [length] (none for a non-periodic field)."""
+        if self._tail:  # (N / A) (1/N) sums: the density and the means in one factor
+            out += self._tail * (radius_squared * float(forces.sum()) + float(radius_squared @ forces))
 
     def __call__(self, radius_squared: np.ndarray, forces: np.ndarray) -> np.ndarray:
         """The displacement at each summit [length] due to the finite size of the others' contacts (squared
         radii [length^2]) carrying ``forces`` [force]."""
         out = np.zeros(forces.size)
         add_pair_products(self._k, self._l, self.weights(radius_squared), forces, out)
-        if self._tail:  # (N / A) (1/N) sums: the density and the means in one factor
-            out += self._tail * (radius_squared * float(forces.sum()) + float(radius_squared @ forces))
+        self.add_far_pairs(radius_squared, forces, out)
         return out
 
 
@@ -205,9 +210,13 @@ def solve_macro(table: AsperityTable, interaction: PointInteraction, law: HertzL
 
     def residual_of(d, delta):
         forces = law.force(d)
-        F = d - (delta + z - z_top) + interaction(forces)
-        if finite_size is not None:
-            F += finite_size(law.radius * np.maximum(d, 0.0), forces)
+        if finite_size is None:
+            F = interaction(forces)
+        else:  # the term in the product's own pair loop, its far pairs after
+            radius_squared = law.radius * np.maximum(d, 0.0)
+            F = finite_size.corrected(interaction, radius_squared)(forces)
+            finite_size.add_far_pairs(radius_squared, forces, F)
+        F += d - (delta + z - z_top)
         norm = float(np.max(np.abs(F))) / scale
         if load_control:
             norm = max(norm, abs(float(law.force(d).sum()) - total_force) / total_force)
@@ -292,30 +301,37 @@ def solve_contact_compliance(interaction: PointInteraction, slope: np.ndarray, r
             else:
                 full[active] = direction
                 t_full = interaction(full)
-            applied = compliance * direction + (t_full if every else t_full[active])
-            step = rz / dot(direction, applied)
-            product += step * t_full
-            rz_old = rz
-            rr, rz = _cg_update(step, direction, applied, x, r, inverse, z)
-            direction *= rz / rz_old
-            direction += z
+            rr, rz = _cg_iteration(rz, direction, t_full, every, active, compliance, x, r, inverse, z, product)
         y[active] = x
     return (y, product) if with_product else y
 
 
 @jit
-def _cg_update(step, direction, applied, x, r, inverse, z):
-    """``x += step direction``, ``r -= step applied``, ``z = inverse r`` in one pass; returns ``(r.r, r.z)``
-    (a numpy expression each, with two inner products, cost 40 us an iteration at 10^3 asperities)."""
-    rr = 0.0
-    rz = 0.0
+def _cg_iteration(rz, direction, product_full, every, active, compliance, x, r, inverse, z, product):
+    """One preconditioned CG iteration after the product ``T p`` on every asperity (``product_full``; the contact
+    set's entries at ``active`` unless ``every``): the step, ``x``, ``r``, ``z = inverse r``, the sum of the
+    products ``T y`` and the next direction, in place; returns ``(r.r, r.z)``. As numpy expressions these passes,
+    with their three inner products, cost more than the product's own arithmetic at 10^3 asperities."""
+    curvature = 0.0
     for i in range(x.size):
+        t = product_full[i] if every else product_full[active[i]]
+        curvature += direction[i] * (compliance[i] * direction[i] + t)
+    step = rz / curvature
+    rr = 0.0
+    rz_next = 0.0
+    for i in range(x.size):
+        t = product_full[i] if every else product_full[active[i]]
         x[i] += step * direction[i]
-        r[i] -= step * applied[i]
+        r[i] -= step * (compliance[i] * direction[i] + t)
         z[i] = inverse[i] * r[i]
         rr += r[i] * r[i]
-        rz += r[i] * z[i]
-    return rr, rz
+        rz_next += r[i] * z[i]
+    for j in range(product.size):
+        product[j] += step * product_full[j]
+    beta = rz_next / rz
+    for i in range(x.size):
+        direction[i] = z[i] + beta * direction[i]
+    return rr, rz_next
 
 
 def _uncoupled_approach(offsets: np.ndarray, law: HertzLaw, total_force: float) -> float:
