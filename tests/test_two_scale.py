@@ -537,15 +537,15 @@ def test_contact_compliance_cg_matches_a_dense_solve():
 
 
 def test_default_macro_tolerance_is_far_below_the_model_error():
-    """The default ``macro_tol`` (1e-4) against a 1e-13 solve: forces within 1e-4 of the largest (3.4e-5
-    measured), where the point-load model itself is 0.5-1.1 % off (``benchmarks/RESULTS.md``)."""
+    """The default ``macro_tol`` (1e-4), with Ewald products as accurate, against a 1e-13 solve: forces within
+    1.5e-4 of the largest (1.02e-4 measured; 0.93e-4 with products at 1e-5: the Newton tolerance's share), where the point-load model itself is 0.5-1.1 % off (``benchmarks/RESULTS.md``)."""
     field = ts.random_asperity_field(300, coverage=0.4, nodes_per_spacing=8, seed=1)
     approach = float(field.max()) - 0.6 * float(np.mean(ts.asperity_table(field).summit_height))
     default = ts.solve(field, E=E, nu=NU, penetration=approach, scale="macro", fields=False)
     tight = ts.solve(field, E=E, nu=NU, penetration=approach, scale="macro", fields=False, macro_tol=1e-13)
     assert default.attrs["macro_tol"] == 1e-4 and default.attrs["macro_residual"] <= 1e-4
-    assert default.attrs["ewald_accuracy"] == 1e-5 and tight.attrs["ewald_accuracy"] == 1e-7  # 0.1 macro_tol, clipped
-    assert np.max(np.abs(default.force.values - tight.force.values)) < 1e-4 * float(tight.force.max())
+    assert default.attrs["ewald_accuracy"] == 1e-4 and tight.attrs["ewald_accuracy"] == 1e-7  # macro_tol, clipped
+    assert np.max(np.abs(default.force.values - tight.force.values)) < 1.5e-4 * float(tight.force.max())
 
 
 def test_two_scale_start_follows_the_outer_tolerance():
