@@ -689,9 +689,9 @@ def test_finite_contact_size_halves_the_macro_error_of_a_dense_field():
 
 
 def test_finite_size_joins_the_interactions_own_pair_loop():
-    """The finite-size term in the Newton steps joins the Ewald operator's pair weights (one pair loop a product),
-    for the accurate operator and its coarser copy alike, and the joined product equals the operator's plus the
-    term's own pair sum."""
+    """The finite-size term joins the Ewald operator's pair loop (one pair loop a product), for the accurate operator
+    and its coarser copy alike, its weights formed in the loop or in an array, and the joined product equals the
+    operator's plus the term's own pair sum."""
     from contactlib.two_scale.interaction import PointInteraction, add_pair_products
     from contactlib.two_scale.macro import FiniteSize
 
@@ -702,12 +702,13 @@ def test_finite_size_joins_the_interactions_own_pair_loop():
     forces, radius_squared = rng.uniform(0.5, 1.5, table.count), rng.uniform(0.5, 1.5, table.count) * 1e-4
     accurate = PointInteraction(table, E_STAR, accuracy=1e-5)
     for operator in (accurate, accurate.coarser(1e-3)):
-        joined = term.corrected(operator, radius_squared)
-        assert isinstance(joined, PointInteraction)
         expected = operator(forces)
         k, l, _ = table.neighbour_pairs(table.neighbour_reach)
         add_pair_products(k, l, term.weights(radius_squared), forces, expected)
-        assert np.max(np.abs(joined(forces) - expected)) < 1e-13 * np.max(np.abs(expected))
+        for products in (1, 5):  # the weights formed in the pair loop, or once in an array
+            joined = term.corrected(operator, radius_squared, products=products)
+            assert isinstance(joined, PointInteraction)
+            assert np.max(np.abs(joined(forces) - expected)) < 1e-13 * np.max(np.abs(expected))
 
 
 def test_finite_size_far_pairs_mean_field_against_the_image_sum():

@@ -168,16 +168,21 @@ class PointInteraction:
         other._setup_mesh(mesh_spacing, support)
         return other
 
-    def with_pair_weights(self, k: np.ndarray, l: np.ndarray, factor: np.ndarray,
-                          node_values: np.ndarray) -> "PointInteraction | None":
+    def with_pair_weights(self, k: np.ndarray, l: np.ndarray, factor: np.ndarray, node_values: np.ndarray, *,
+                          products: int = 1) -> "PointInteraction | None":
         """The same operator with ``factor_i (node_values[k_i] + node_values[l_i])`` [length/force] added to the
         short-range weight of pair ``i``, when ``(k, l)`` are its own pair arrays (the table's one neighbour
-        query): one pair loop a product for a pair term such as :class:`.macro.FiniteSize`, its weights formed in
-        that loop (no array of them). None otherwise."""
+        query): one pair loop a product for a pair term such as :class:`.macro.FiniteSize`. None otherwise.
+        ``products``: how many products the copy will make; for one, the weights are formed in its pair loop,
+        for more, once in an array of them (a pass over the pairs against 10 us more a product at 10^3)."""
         if self.method != "ewald" or k is not self._pair_k or l is not self._pair_l:
             return None
         other = copy.copy(self)
-        other._pair_term = (np.ascontiguousarray(factor, dtype=float), np.ascontiguousarray(node_values, dtype=float))
+        factor, node_values = np.ascontiguousarray(factor, dtype=float), np.ascontiguousarray(node_values, dtype=float)
+        if products > 1:
+            other._pair_w = _pair_weights(self._pair_k, self._pair_l, self._pair_w, factor, node_values)
+        else:
+            other._pair_term = (factor, node_values)
         return other
 
     def __call__(self, forces: np.ndarray) -> np.ndarray:
@@ -234,6 +239,15 @@ def add_pair_products(k, l, w, forces, out):
 
 
 _NO_PAIRS = np.empty(0)
+
+
+@jit
+def _pair_weights(k, l, w, factor, node_values):
+    """``w + factor (node_values[k] + node_values[l])``, pair by pair (:meth:`PointInteraction.with_pair_weights`)."""
+    out = np.empty(w.size)
+    for i in range(w.size):
+        out[i] = w[i] + factor[i] * (node_values[k[i]] + node_values[l[i]])
+    return out
 
 
 @jit
