@@ -199,6 +199,39 @@ def asperity_table(asperities, *, length: float | None = None, periodic: bool | 
             raise ValueError(f"asperities: {name} has {column.size} entries, radius {n}")
     if n == 0:
         raise ValueError("asperities: the table is empty")
+    centers = np.empty((n, 2))
+    if not _valid_columns(x, y, radius, summit, footprint_radius is None, float(window), bool(periodic), centers):
+        _refuse_columns(x, y, radius, summit, footprint_radius, window, periodic)
+    footprint = None
+    if footprint_radius is not None:
+        if not (np.isfinite(footprint_radius) and footprint_radius > 0):
+            raise ValueError(f"footprint_radius must be finite and > 0, got {footprint_radius!r}")
+        footprint = np.full(n, float(footprint_radius))
+    table = AsperityTable(centers, radius, summit, window, bool(periodic), heights, grid, footprint, highest)
+    check_separate(table)
+    return table
+
+
+@jit
+def _valid_columns(x, y, radius, summit, caps, window, periodic, centers):
+    """Whether the columns pass :func:`_refuse_columns`' checks, in one pass that also fills the centres (wrapped
+    into the window when periodic): numpy's masks, stacking and modulo took 0.1 ms at 10^3 asperities."""
+    for k in range(x.size):
+        r, z = radius[k], summit[k]
+        if not (math.isfinite(x[k]) and math.isfinite(y[k]) and math.isfinite(r) and r > 0 and math.isfinite(z)
+                and z > 0 and (z <= r or not caps)):
+            return False
+        if periodic:
+            centers[k, 0], centers[k, 1] = x[k] % window, y[k] % window
+        elif x[k] < 0 or x[k] > window or y[k] < 0 or y[k] > window:
+            return False
+        else:
+            centers[k, 0], centers[k, 1] = x[k], y[k]
+    return True
+
+
+def _refuse_columns(x, y, radius, summit, footprint_radius, window, periodic) -> None:
+    """Raise the error naming the column that :func:`_valid_columns` found wrong."""
     for name, column in (("center_x", x), ("center_y", y)):
         bad = np.flatnonzero(~np.isfinite(column))
         if bad.size:
@@ -212,18 +245,9 @@ def asperity_table(asperities, *, length: float | None = None, periodic: bool | 
         raise ValueError(f"summit_height must lie in (0, radius] (a cap above the base): asperity "
                          f"{bad.tolist()[:5]} has {summit[bad][:5].tolist()}")
     centers = np.stack([x, y], axis=1)
-    if periodic:
-        centers = centers % window
-    elif np.any(centers < 0) or np.any(centers > window):
+    if not periodic and (np.any(centers < 0) or np.any(centers > window)):
         raise ValueError("center_x, center_y: a non-periodic window holds its asperities inside [0, length]")
-    footprint = None
-    if footprint_radius is not None:
-        if not (np.isfinite(footprint_radius) and footprint_radius > 0):
-            raise ValueError(f"footprint_radius must be finite and > 0, got {footprint_radius!r}")
-        footprint = np.full(n, float(footprint_radius))
-    table = AsperityTable(centers, radius, summit, window, bool(periodic), heights, grid, footprint, highest)
-    check_separate(table)
-    return table
+    raise RuntimeError("asperities: the table's check and its error messages disagree")  # not reached
 
 
 def check_separate(table: AsperityTable) -> None:

@@ -31,7 +31,6 @@ from dataclasses import dataclass
 import numpy as np
 
 from .._numba import jit
-from ..solvers.state import dot
 from .asperities import AsperityTable
 from .interaction import PointInteraction, add_pair_products
 
@@ -284,15 +283,12 @@ def solve_contact_compliance(interaction: PointInteraction, slope: np.ndarray, r
     active = np.flatnonzero(slope > 0)
     if active.size:
         every = active.size == n  # all in contact: no scatter and gather around each product
-        compliance = 1.0 / slope[active]  # each Hertz contact's own compliance 1/(2 E* a)
-        inverse = 1.0 / (compliance + np.maximum(interaction.diagonal[active], 0.0))
-        r = rhs[active].astype(float)
-        target = max(rtol, 1e-12) * math.sqrt(dot(r, r))
+        compliance, inverse, r, z, direction = (np.empty(active.size) for _ in range(5))
+        rr, rz = _cg_start(active, slope, np.ascontiguousarray(interaction.diagonal, dtype=float),
+                           np.ascontiguousarray(rhs, dtype=float), compliance, inverse, r, z, direction)
+        target = max(rtol, 1e-12) * math.sqrt(rr)
         x = np.zeros(active.size)
         full = np.zeros(n)
-        z = inverse * r
-        rz, rr = dot(r, z), dot(r, r)
-        direction = z.copy()
         for _ in range(10 * active.size + 100):
             if math.sqrt(rr) <= target:
                 break
@@ -304,6 +300,25 @@ def solve_contact_compliance(interaction: PointInteraction, slope: np.ndarray, r
             rr, rz = _cg_iteration(rz, direction, t_full, every, active, compliance, x, r, inverse, z, product)
         y[active] = x
     return (y, product) if with_product else y
+
+
+@jit
+def _cg_start(active, slope, diagonal, rhs, compliance, inverse, r, z, direction):
+    """The start of :func:`solve_contact_compliance` on the contact set ``active``, in one pass: each Hertz
+    contact's own compliance ``1 / slope``, the diagonal preconditioner, the residual ``r`` (the right-hand side),
+    ``z = inverse r`` and the first direction; returns ``(r.r, r.z)``."""
+    rr = 0.0
+    rz = 0.0
+    for i in range(active.size):
+        k = active[i]
+        compliance[i] = 1.0 / slope[k]  # 1 / (2 E* a)
+        inverse[i] = 1.0 / (compliance[i] + max(diagonal[k], 0.0))
+        r[i] = rhs[k]
+        z[i] = inverse[i] * r[i]
+        direction[i] = z[i]
+        rr += r[i] * r[i]
+        rz += r[i] * z[i]
+    return rr, rz
 
 
 @jit
