@@ -538,7 +538,8 @@ def test_contact_compliance_cg_matches_a_dense_solve():
 
 def test_default_macro_tolerance_is_far_below_the_model_error():
     """The default ``macro_tol`` (1e-4), with Ewald products as accurate, against a 1e-13 solve: forces within
-    1.5e-4 of the largest (1.02e-4 measured; 0.93e-4 with products at 1e-5: the Newton tolerance's share), where the point-load model itself is 0.5-1.1 % off (``benchmarks/RESULTS.md``)."""
+    1.5e-4 of the largest (1.02e-4 measured; 0.93e-4 with products at 1e-5: the Newton tolerance's share), where
+    the point-load model itself is 0.5-1.1 % off (``benchmarks/RESULTS.md``)."""
     field = ts.random_asperity_field(300, coverage=0.4, nodes_per_spacing=8, seed=1)
     approach = float(field.max()) - 0.6 * float(np.mean(ts.asperity_table(field).summit_height))
     default = ts.solve(field, E=E, nu=NU, penetration=approach, scale="macro", fields=False)
@@ -705,8 +706,8 @@ def test_finite_size_joins_the_interactions_own_pair_loop():
         expected = operator(forces)
         k, l, _ = table.neighbour_pairs(table.neighbour_reach)
         add_pair_products(k, l, term.weights(radius_squared), forces, expected)
-        for products in (1, 5):  # the weights formed in the pair loop, or once in an array
-            joined = term.corrected(operator, radius_squared, products=products)
+        for reused in (False, True):  # the weights formed in the pair loop, or once in an array
+            joined = term.corrected(operator, radius_squared, reused=reused)
             assert isinstance(joined, PointInteraction)
             assert np.max(np.abs(joined(forces) - expected)) < 1e-13 * np.max(np.abs(expected))
 

@@ -31,8 +31,9 @@ from .transient import solve_transient
 SCALES = ("macro", "two-scale")
 MACRO_TOL = 1e-4
 """Default ``macro_tol`` of ``scale="macro"``: the forces within about 1e-4 of the largest of the converged ones
-(0.1-1.0e-4 measured at 300 and 10^3 asperities), 30-60x below the point-load model's own error (0.3-0.6 % of the largest force against the
-full solver), and one Newton step (10 of 25 interaction products at 10^3 asperities) fewer than 1e-8."""
+(0.1-1.0e-4 measured at 300 and 10^3 asperities), 30-60x below the point-load model's own error (0.3-0.6 % of the
+largest force against the full solver), and one Newton step (10 of 25 interaction products at 10^3 asperities)
+fewer than 1e-8."""
 START_TOL_FACTOR = 1e-2
 """Two-scale: the macro step only starts the sweeps (their fixed point does not depend on it), so by default
 it runs at this fraction of the outer tolerance (``force_tol``, else ``tol``), between :data:`START_TOL_MIN` and
@@ -41,12 +42,11 @@ START_TOL_MIN = 1e-8
 """The tightest default start: tighter gains the sweeps nothing, and Newton's residual has a floor near 1e-15."""
 INTERACTION_ACCURACY_FACTOR = 0.1
 """Two-scale: the Ewald products' accuracy (:class:`.PointInteraction`) as a fraction of ``macro_tol``, between
-:data:`.interaction.ACCURACY` (1e-7) and :data:`INTERACTION_ACCURACY_MAX` (``scale="macro"``: :data:`MACRO_ACCURACY`):
-the Newton residual is measured with the same products, so their error moves the forces by at most about as much,
-a tenth of the tolerance. The two-scale
-sweeps use them only in the coarse correction, which changes a sweep's contraction, not its fixed point
-(``micro.COARSE_RTOL``, 1e-2 to 1e-4); they get the same accuracy (1e-5 at ``force_tol`` 1e-2, 1e-7 at ``tol``
-1e-6)."""
+:data:`.interaction.ACCURACY` (1e-7) and :data:`INTERACTION_ACCURACY_MAX` (``scale="macro"``:
+:data:`MACRO_ACCURACY`): the Newton residual is measured with the same products, so their error moves the forces by
+at most about as much, a tenth of the tolerance. The two-scale sweeps use them only in the coarse correction,
+which changes a sweep's contraction, not its fixed point (``micro.COARSE_RTOL``, 1e-2 to 1e-4); they get the same
+accuracy (1e-5 at ``force_tol`` 1e-2, 1e-7 at ``tol`` 1e-6)."""
 INTERACTION_ACCURACY_MAX = 1e-5
 """The loosest Ewald products of the two-scale method (7 x 7 Gaussian nodes at 1e-4 against 9 x 9 at 1e-5)."""
 MACRO_ACCURACY = 1e-4

@@ -169,17 +169,17 @@ class PointInteraction:
         return other
 
     def with_pair_weights(self, k: np.ndarray, l: np.ndarray, factor: np.ndarray, node_values: np.ndarray, *,
-                          products: int = 1) -> "PointInteraction | None":
+                          reused: bool = False) -> "PointInteraction | None":
         """The same operator with ``factor_i (node_values[k_i] + node_values[l_i])`` [length/force] added to the
         short-range weight of pair ``i``, when ``(k, l)`` are its own pair arrays (the table's one neighbour
         query): one pair loop a product for a pair term such as :class:`.macro.FiniteSize`. None otherwise.
-        ``products``: how many products the copy will make; for one, the weights are formed in its pair loop,
-        for more, once in an array of them (a pass over the pairs against 10 us more a product at 10^3)."""
+        ``reused``: the copy makes several products (a Newton step's solve), so the weights are formed once in an
+        array; else in its pair loop (10 us more a product at 10^3 asperities, no pass of its own)."""
         if self.method != "ewald" or k is not self._pair_k or l is not self._pair_l:
             return None
         other = copy.copy(self)
         factor, node_values = np.ascontiguousarray(factor, dtype=float), np.ascontiguousarray(node_values, dtype=float)
-        if products > 1:
+        if reused:
             other._pair_w = _pair_weights(self._pair_k, self._pair_l, self._pair_w, factor, node_values)
         else:
             other._pair_term = (factor, node_values)

@@ -128,11 +128,11 @@ class FiniteSize:
         """The term's weight of each neighbour pair [length/force] at the contacts' squared radii [length^2]."""
         return self._g * (radius_squared[self._k] + radius_squared[self._l])
 
-    def corrected(self, interaction, radius_squared: np.ndarray, *, products: int = 1):
-        """``T + S(a)`` over the neighbour pairs at fixed contact radii, for ``products`` products: for an Ewald
-        interaction over the same pairs, a copy with the term in its pair loop (one pair loop a product, not
+    def corrected(self, interaction, radius_squared: np.ndarray, *, reused: bool = False):
+        """``T + S(a)`` over the neighbour pairs at fixed contact radii (``reused``: for several products): for an
+        Ewald interaction over the same pairs, a copy with the term in its pair loop (one pair loop a product, not
         two), else a wrapper."""
-        combined = interaction.with_pair_weights(self._k, self._l, self._g, radius_squared, products=products) \
+        combined = interaction.with_pair_weights(self._k, self._l, self._g, radius_squared, reused=reused) \
             if isinstance(interaction, PointInteraction) else None
         return combined if combined is not None else \
             _Corrected(interaction, self._k, self._l, self.weights(radius_squared))
@@ -237,7 +237,7 @@ def solve_macro(table: AsperityTable, interaction: PointInteraction, law: HertzL
             jacobian = interaction.coarser(JACOBIAN_ACCURACY) if jacobian is None else jacobian
             operator = jacobian
         if finite_size is not None:  # in the step too: without it, 3 Newton steps instead of 2 at coverage 0.4
-            operator = finite_size.corrected(operator, law.radius * np.maximum(d, 0.0), products=2)
+            operator = finite_size.corrected(operator, law.radius * np.maximum(d, 0.0), reused=True)
         a = _newton_solve(operator, slope, -F, rtol=rtol)
         if load_control:
             b = _newton_solve(operator, slope, np.ones_like(d), rtol=rtol)
