@@ -155,6 +155,11 @@ class PointInteraction:
         # T_kk: no pair is an asperity with itself (r_c < L/2), so the short-range part adds nothing
         self.diagonal = np.full(self.count, self._self_term + self._shift + mesh_diagonal)
 
+    @property
+    def geometry(self) -> tuple[np.ndarray, float] | None:
+        """``(centers, length)`` of a periodic (Ewald) interaction [length]; None for the direct sum."""
+        return (self._geometry[0], self._geometry[1]) if self.method == "ewald" else None
+
     def coarser(self, accuracy: float) -> "PointInteraction":
         """The same operator with its long-range part (mesh and Gaussians) at the looser ``accuracy`` [1] and
         the rest shared (the pairs, ``alpha``): for the Newton steps' linear solves, which stop at a relative
