@@ -575,10 +575,12 @@ def test_smooth_preconditioner_is_symmetric_positive_and_saves_products():
                                           1 / slope[active] + op.diagonal[active])
     rng = np.random.default_rng(3)
     a, b = rng.standard_normal((2, active.size))
-    Ma, Mb = preconditioner(a, np.empty(active.size)), preconditioner(b, np.empty(active.size))
+    Ma, Mb = np.empty(active.size), np.empty(active.size)
+    assert preconditioner(a, Ma) == pytest.approx(a @ Ma, rel=1e-12)  # it returns r . M r
+    preconditioner(b, Mb)
     assert abs(b @ Ma - a @ Mb) < 1e-12 * abs(b @ Ma)
     for v in rng.standard_normal((50, active.size)):
-        assert v @ preconditioner(v, np.empty(active.size)) > 0
+        assert preconditioner(v, np.empty(active.size)) > 0
     rhs = rng.standard_normal(table.count) * 1e-3
     answers, products = {}, {}
     for smooth in (False, True):

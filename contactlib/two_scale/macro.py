@@ -36,7 +36,7 @@ from .. import fft
 from .._numba import jit
 from ..solvers.state import dot
 from .asperities import AsperityTable
-from .interaction import PointInteraction, _gather, _gaussian_factors, _spread, add_pair_products
+from .interaction import PointInteraction, _fold, _gaussian_factors, _kernels, _unfold, add_pair_products
 
 
 JACOBIAN_ACCURACY = 1e-3
@@ -372,8 +372,7 @@ def _smooth_or_diagonal(smooth, r, z, inverse, rz, direction):
     """The next direction with the smooth preconditioner, or, where it is not positive on this residual (contacts
     far from evenly scattered, which its Fourier multiplier assumes), a restart with the diagonal one from here on
     (conjugate gradients need a positive definite preconditioner); returns ``(r.z, the preconditioner kept)``."""
-    smooth(r, z)
-    if dot(r, z) > 0:
+    if smooth(r, z) > 0:
         return _cg_direction(z, r, rz, direction), smooth
     np.multiply(inverse, r, out=z)
     return _cg_direction(z, r, 0.0, direction), None  # a steepest-descent step: the directions start again
@@ -418,44 +417,70 @@ class SmoothPreconditioner:
     number 1.3-1.7 with the exact inner inverse, 4 -> 2 and 7 -> 3 products with this one; the periodic
     (Ewald) interaction only."""
 
-    def __init__(self, centers: np.ndarray, length: float, E_star: float, diagonal: np.ndarray):
+    def __init__(self, centers: np.ndarray, length: float, E_star: float, diagonal: np.ndarray, *,
+                 factors: tuple | None = None):
         count = len(centers)
         width = SMOOTH_WIDTH * length / math.sqrt(count)
         # one node per two widths: the Gaussians are a smoothing here, not a quadrature to be resolved
         self._mesh = m = _smooth_mesh_size(length, width)
         spacing = length / m
-        self._factors = _gaussian_factors(centers, length, m, width, 3.0)
+        self.factors = _gaussian_factors(centers, length, m, width, 3.0) if factors is None else factors
         boussinesq, smoothing, self_term = _smooth_symbols(length, m, width, E_star)
         # D' keeps diag(D' + T_s) = diag(K); floored: a preconditioner must stay positive definite
         self._inverse = 1.0 / np.maximum(diagonal - self_term, 0.5 * diagonal)
-        density_compliance = count / length**2 * float(np.mean(self._inverse))
+        density_compliance = float(self._inverse.sum()) / length**2
         # fftw's inverse is unnormalised; the spreading and gathering leave out the node area: h^2 / m^2
         self._multiplier = boussinesq / (1.0 + density_compliance * smoothing * boussinesq) * (
             spacing * spacing / (m * m))
+        self._plan = fft.get_fft((m, m), slot="smooth-preconditioner")  # this thread's: a solve uses it, no other
+        # the mesh widened by the support (no wrap inside the compiled loops), as the interaction's products
+        self._widened = np.empty((m, m + max(self.factors[2].shape[1], 1)))
 
     @classmethod
     def for_contacts(cls, interaction, active: np.ndarray, diagonal: np.ndarray) -> "SmoothPreconditioner | None":
         """The preconditioner of the contacts ``active`` with the diagonal ``diag(K)`` [length/force], for an
-        Ewald (periodic) interaction and at least :data:`SMOOTH_MIN_CONTACTS` contacts; None otherwise."""
+        Ewald (periodic) interaction and at least :data:`SMOOTH_MIN_CONTACTS` contacts; None otherwise. The
+        Gaussians of the last contact set are kept for the next (a solve's Newton steps share their set)."""
         geometry = getattr(interaction, "geometry", None)
         if geometry is None or active.size < SMOOTH_MIN_CONTACTS:
             return None
         centers, length = geometry
-        return cls(centers[active], length, interaction.E_star, diagonal)
+        last = _last_factors[0]  # one read: another thread may replace it meanwhile
+        reuse = last is not None and last[0] is centers and last[1] == length and np.array_equal(last[2], active)
+        preconditioner = cls(centers[active], length, interaction.E_star, diagonal,
+                             factors=last[3] if reuse else None)
+        if not reuse:
+            _last_factors[0] = (centers, length, active.copy(), preconditioner.factors)
+        return preconditioner
 
-    def __call__(self, residual: np.ndarray, out: np.ndarray) -> np.ndarray:
-        """``out = M residual``; returns ``out``."""
-        rows, cols, gx, gy = self._factors
-        scaled = self._inverse * residual
-        plan = fft.get_fft((self._mesh, self._mesh), slot="smooth-preconditioner")
+    def __call__(self, residual: np.ndarray, out: np.ndarray) -> float:
+        """``out = M residual``; returns ``residual . out``."""
+        rows, cols, gx, gy = self.factors
+        spread, gather = _kernels(gx.shape[1])
+        plan, widened = self._plan, self._widened
+        widened.fill(0.0)
+        spread(rows, cols, gx, gy, self._inverse * residual, widened)
         plan.real.fill(0.0)
-        _spread(rows, cols, gx, gy, scaled, plan.real)
+        _fold(widened, plan.real)
         spectrum = plan.forward()
         spectrum *= self._multiplier
-        _gather(rows, cols, gx, gy, plan.inverse(), out)
-        out *= -self._inverse
-        out += scaled
-        return out
+        _unfold(plan.inverse(), widened)
+        gather(rows, cols, gx, gy, widened, out)
+        return _smooth_finish(self._inverse, residual, out)
+
+
+@jit
+def _smooth_finish(inverse, residual, out):
+    """``out = D'^-1 (residual - out)`` (``out`` the gathered mesh); returns ``residual . out``."""
+    rz = 0.0
+    for k in range(out.size):
+        out[k] = inverse[k] * (residual[k] - out[k])
+        rz += residual[k] * out[k]
+    return rz
+
+
+_last_factors = [None]
+"""``(centers, length, active, Gaussian factors)`` of the last :class:`SmoothPreconditioner` built."""
 
 
 def _smooth_mesh_size(length: float, width: float) -> int:
