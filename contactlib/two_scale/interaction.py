@@ -35,8 +35,8 @@ corrections): it would pay only past about ``N`` products, which no solve reache
 directly instead (Ewald with ``alpha L = 7.2``, so that the real-space part is the nearest image's
 ``erfc(alpha r)/r`` over all pairs and the reciprocal part about 240 modes, a product of ``N x 240``
 factors), at 10^3 asperities the real part took 78 ms and the reciprocal 64 ms (one core), 5x a whole
-macro solve by products (about 20 ms), and a Cholesky factor 21 ms more; at 200 asperities 11 ms against
-about 4 ms. Spreading and gathering use the Gaussians' separable form (:func:`_spread`,
+macro solve by products as it was then (about 20 ms; 2-3 ms now), and a Cholesky factor 21 ms more; at 200
+asperities 11 ms against about 4 ms. Spreading and gathering use the Gaussians' separable form (:func:`_spread`,
 :func:`_gather`): ``4 P`` numbers per asperity instead of a sparse matrix's ``2 P^2``, and nothing to
 build but the 1D factors.
 """
