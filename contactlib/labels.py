@@ -120,7 +120,9 @@ def dataset(data: dict, coords: dict, attrs: dict | None = None) -> xr.Dataset:
     with ``identical``); the dimensions are still checked for conflicts. Falls back to the constructor on an
     xarray without the direct path (a private method)."""
     construct = getattr(xr.Dataset, "_construct_direct", None)
-    if construct is None:
+    dims = {d for entry in (*data.values(), *coords.values())
+            for d in ((entry[0],) if isinstance(entry[0], str) else entry[0])}
+    if construct is None or set(data) & (set(coords) | dims):  # a clash: the constructor's own checks and errors
         return xr.Dataset(data, coords=coords, attrs=attrs)
     variables, indexes = {}, {}
     for name, (dims, values, var_attrs) in data.items():
@@ -131,4 +133,7 @@ def dataset(data: dict, coords: dict, attrs: dict | None = None) -> xr.Dataset:
             indexes[name] = xr.indexes.PandasIndex(variables[name].to_index(), name)
         else:
             variables[name] = xr.Variable(dims, values, var_attrs)
-    return construct(variables, set(coords), attrs=dict(attrs or {}), indexes=indexes)
+    try:
+        return construct(variables, set(coords), attrs=dict(attrs or {}), indexes=indexes)
+    except TypeError:  # the private method's signature changed
+        return xr.Dataset(data, coords=coords, attrs=attrs)

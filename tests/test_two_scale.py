@@ -224,6 +224,11 @@ def test_direct_dataset_equals_the_public_constructor():
     assert float(direct.force.sel(asperity=2)) == data["force"][1][2]
     with pytest.raises(ValueError):
         dataset({"force": ("asperity", np.ones(4), {})}, coords, attrs)
+    # names that clash go to the constructor, which refuses a name in both, and indexes a variable named like a dim
+    with pytest.raises(ValueError, match="radius"):
+        dataset({"radius": ("asperity", np.ones(5), {})}, coords, attrs)
+    clash = {"y": (("y",), np.arange(3.0), {})}
+    xr.testing.assert_identical(dataset(clash, {}, attrs), xr.Dataset(clash, attrs=attrs))
 
 
 def test_newton_through_asperities_entering_contact():

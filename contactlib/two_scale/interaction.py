@@ -180,8 +180,8 @@ class PointInteraction:
         query): one pair loop a product for a pair term such as :class:`.macro.FiniteSize`. None otherwise.
         ``reused``: the copy makes several products (a Newton step's solve), so the weights are formed once in an
         array; else in its pair loop (10 us more a product at 10^3 asperities, no pass of its own)."""
-        if self.method != "ewald" or k is not self._pair_k or l is not self._pair_l:
-            return None
+        if self.method != "ewald" or k is not self._pair_k or l is not self._pair_l or self._pair_term[0].size:
+            return None  # (a copy that has a pair term already: the caller's wrapper adds the second)
         other = copy.copy(self)
         factor, node_values = np.ascontiguousarray(factor, dtype=float), np.ascontiguousarray(node_values, dtype=float)
         if reused:
