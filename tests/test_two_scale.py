@@ -525,8 +525,8 @@ def test_contact_compliance_cg_matches_a_dense_solve(count, smooth, monkeypatch)
     product ``T y`` it sums from its iterations equals ``T`` applied to its answer. With the diagonal
     preconditioner (32 contacts), the smooth one (160), and a smooth one that is not positive (the restart with
     the diagonal)."""
-    from contactlib.two_scale import macro
-    from contactlib.two_scale.macro import SmoothPreconditioner, solve_contact_compliance
+    from contactlib.two_scale import compliance
+    from contactlib.two_scale.compliance import SmoothPreconditioner, solve_contact_compliance
 
     field = ts.random_asperity_field(count, coverage=0.2, nodes_per_spacing=8, seed=2)
     table = ts.asperity_table(field)
@@ -551,7 +551,7 @@ def test_contact_compliance_cg_matches_a_dense_solve(count, smooth, monkeypatch)
             return preconditioner(residual, out)
         return counted
 
-    monkeypatch.setattr(macro.SmoothPreconditioner, "for_contacts", staticmethod(spy))
+    monkeypatch.setattr(compliance.SmoothPreconditioner, "for_contacts", staticmethod(spy))
     y, product = solve_contact_compliance(op, slope, rhs, rtol=1e-12, with_product=True)
     assert used == [bool(smooth)]
     assert (len(applied) == 1) == (smooth == "not positive")  # refused at once, the diagonal from there on
@@ -565,10 +565,11 @@ def test_contact_compliance_cg_matches_a_dense_solve(count, smooth, monkeypatch)
 
 
 def test_smooth_preconditioner_is_symmetric_positive_and_saves_products():
-    """:class:`contactlib.two_scale.macro.SmoothPreconditioner` on 300 asperities at coverage 0.4 (Hertz slopes at
+    """:class:`contactlib.two_scale.compliance.SmoothPreconditioner` on 300 asperities at coverage 0.4 (Hertz slopes at
     a Newton start): symmetric to round-off, positive on random vectors, and the contact-compliance CG at rtol 1e-3
     takes 2 products instead of the diagonal's 4 (measured), to the same answer within that tolerance."""
-    from contactlib.two_scale.macro import HertzLaw, SmoothPreconditioner, solve_contact_compliance
+    from contactlib.two_scale.compliance import SmoothPreconditioner, solve_contact_compliance
+    from contactlib.two_scale.macro import HertzLaw
 
     field = ts.random_asperity_field(300, coverage=0.4, nodes_per_spacing=8, seed=1)
     table = ts.asperity_table(field)

@@ -216,22 +216,36 @@ def _ewald_mesh(L: float, alpha: float, E_star: float, spacing: float) -> tuple[
     its rfft layout (read-only), and the long-range part of ``T_kk``, the Fourier sum
     ``(1/A) sum_q (2/(E* q)) erfc(q/2 alpha)`` at r = 0 (Hermitian weights), the same for every asperity."""
     s = GAUSSIAN_WIDTH / alpha
-    m = sfft.next_fast_len(int(math.ceil(L / spacing)), real=True)
-    while m % 2:
-        m = sfft.next_fast_len(m + 1, real=True)
+    m = even_fast_size(L / spacing)
     h = L / m
-    q = 2 * np.pi * np.sqrt(np.fft.fftfreq(m, h)[:, None] ** 2 + np.fft.rfftfreq(m, h)[None, :] ** 2)
+    q, weight = mesh_wavenumbers(L, m)
     long_range = np.zeros_like(q)
     nz = q > 0
     long_range[nz] = 2.0 / (E_star * q[nz]) * erfc(q[nz] / (2 * alpha))
     # fftw's inverse is unnormalised: the 1/m^2 goes into the multiplier, and the gathering's node area h^2
     multiplier = long_range * np.exp((q * s) ** 2) * (h * h / (m * m))
     multiplier.setflags(write=False)
-    weight = np.full(long_range.shape, 2.0)
-    weight[:, 0] = 1.0
-    weight[:, -1] = 1.0
     diagonal = float(np.sum(weight * long_range)) / (m * m * h * h)
     return m, multiplier, diagonal
+
+
+def even_fast_size(points: float) -> int:
+    """The smallest even fast FFT size (real transforms) of at least ``points`` nodes."""
+    m = sfft.next_fast_len(max(int(math.ceil(points)), 2), real=True)
+    while m % 2:
+        m = sfft.next_fast_len(m + 1, real=True)
+    return m
+
+
+def mesh_wavenumbers(L: float, m: int) -> tuple[np.ndarray, np.ndarray]:
+    """``|q|`` [1/length] on the rfft layout of an ``m x m`` mesh (``m`` even) of the window ``L``, and the
+    Hermitian weights that sum a real field's spectrum over every mode (2, but 1 on the first and last columns)."""
+    h = L / m
+    q = 2 * np.pi * np.sqrt(np.fft.fftfreq(m, h)[:, None] ** 2 + np.fft.rfftfreq(m, h)[None, :] ** 2)
+    weight = np.full(q.shape, 2.0)
+    weight[:, 0] = 1.0
+    weight[:, -1] = 1.0
+    return q, weight
 
 
 @jit

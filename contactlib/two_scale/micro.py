@@ -52,7 +52,8 @@ from . import _window_sweeps as sweeps
 from .asperities import AsperityTable
 from .interaction import PointInteraction
 from .local import WindowStack, solve_stack
-from .macro import HertzLaw, MacroState, solve_contact_compliance
+from .compliance import solve_contact_compliance
+from .macro import HertzLaw, MacroState
 
 WINDOW_MARGIN = 1.15
 """Window half-width in macro contact radii (the largest), plus :data:`WINDOW_PAD` nodes."""
