@@ -159,7 +159,7 @@ class SmoothPreconditioner:
 
         M z = D'^-1 r - D'^-1 S [G / (1 + rho <1/D'> exp(-s^2 q^2) G)] S^T D'^-1 r,
 
-    a spreading, an FFT pair on a mesh of about ``N`` nodes and a gathering (about 20 us at 10^3 asperities,
+    a spreading, an FFT pair on a mesh of about ``N`` nodes and a gathering (about 25 us at 10^3 asperities,
     against 80 us for a product). Measured on the Newton steps at 10^3 asperities (coverage 0.4): condition
     number 1.3-1.7 with the exact inner inverse, 4 -> 2 and 7 -> 3 products with this one; the periodic
     (Ewald) interaction only. Positive definite for evenly scattered contacts, not guaranteed for clustered ones
