@@ -18,8 +18,8 @@ over the largest ``P_k^ref``), contact area, pressure field (relative L2; the ma
 pressure of each macro force). Times: one warm-up solve of each (FFT plans, JIT), then ``--repeats``
 solves interleaved (macro, two-scale, full in turn) and the median; ratios are full / method from the
 same run. Each field runs in a fresh interpreter (``--same-process`` to opt out; :func:`run_isolated` says why);
-``--allocator keep`` runs them with glibc keeping freed memory mapped (no page faults on reuse). Grids above ``--max-nodes`` points per side are skipped (the full solver's memory and time on a
-small machine), and said so.
+``--allocator keep`` runs them with glibc keeping freed memory mapped (no page faults on reuse). Grids above
+``--max-nodes`` points per side are skipped (the full solver's memory and time on a small machine), and said so.
 
 Run ``python benchmarks/bench_two_scale.py --help``; ``--json`` writes every number.
 """

@@ -13,8 +13,7 @@ import numpy as np
 
 from .. import fft
 from .._numba import jit
-from .interaction import PointInteraction, _fold, _gaussian_factors, _kernels, _unfold, even_fast_size, \
-    mesh_wavenumbers
+from .interaction import PointInteraction, _gather, _gaussian_factors, _spread, even_fast_size, mesh_wavenumbers
 
 
 def solve_contact_compliance(interaction: PointInteraction, slope: np.ndarray, rhs: np.ndarray, *,
@@ -175,8 +174,6 @@ class SmoothPreconditioner:
         self._mesh = m = max(even_fast_size(length / (2.0 * width)), 4)
         spacing = length / m
         self.factors = _gaussian_factors(centers, length, m, width, 3.0) if factors is None else factors
-        if self.factors[2].shape[1] > m:  # the widened mesh folds back p columns: p <= m (10 contacts or more)
-            raise ValueError(f"SmoothPreconditioner: {count} contacts make a {m}^2 mesh narrower than the Gaussians")
         boussinesq, smoothing, self_term = _smooth_symbols(length, m, width, E_star)
         # D' keeps diag(D' + T_s) = diag(K); floored: a preconditioner must stay positive definite
         self._inverse = 1.0 / np.maximum(diagonal - self_term, 0.5 * diagonal)
@@ -185,8 +182,6 @@ class SmoothPreconditioner:
         self._multiplier = boussinesq / (1.0 + density_compliance * smoothing * boussinesq) * (
             spacing * spacing / (m * m))
         self._plan = fft.get_fft((m, m), slot="smooth-preconditioner")  # this thread's: a solve uses it, no other
-        # the mesh widened by the support (no wrap inside the compiled loops), as the interaction's products
-        self._widened = np.empty((m, m + max(self.factors[2].shape[1], 1)))
 
     @classmethod
     def for_contacts(cls, interaction, active: np.ndarray, diagonal: np.ndarray) -> "SmoothPreconditioner | None":
@@ -207,17 +202,12 @@ class SmoothPreconditioner:
 
     def __call__(self, residual: np.ndarray, out: np.ndarray) -> float:
         """``out = M residual``; returns ``residual . out``."""
-        rows, cols, gx, gy = self.factors
-        spread, gather = _kernels(gx.shape[1])
-        plan, widened = self._plan, self._widened
-        widened.fill(0.0)
-        spread(rows, cols, gx, gy, self._inverse * residual, widened)
+        plan = self._plan
         plan.real.fill(0.0)
-        _fold(widened, plan.real)
+        _spread(*self.factors, self._inverse * residual, plan.real)  # the interaction's own spreading and gathering
         spectrum = plan.forward()
         spectrum *= self._multiplier
-        _unfold(plan.inverse(), widened)
-        gather(rows, cols, gx, gy, widened, out)
+        _gather(*self.factors, plan.inverse(), out)
         return _smooth_finish(self._inverse, residual, out)
 
 
