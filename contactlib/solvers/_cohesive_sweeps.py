@@ -21,10 +21,13 @@ MAUGIS, EXPONENTIAL = 0, 1
 @_jit
 def law_residual(p, g, model, sigma0, range_, ramp, c, image):
     """``image`` = the adhesive traction ``a(g)`` of the law (:meth:`contactlib.Adhesion.traction`,
-    Maugis' step as its ramp of half-width ``ramp * range_``); returns ``(sum |phi|, sum max(-g, 0))``
-    with ``phi = c g`` where the repulsive part ``p - a(g)`` exceeds ``c g``, else ``p - a(g)``."""
+    Maugis' step as its ramp of half-width ``ramp * range_``); returns ``(sum |phi|, sum max(-g, 0),
+    sum |p_r| |g|, sum |p_r|)`` with ``phi = c g`` where the repulsive part ``p_r = p - a(g)`` exceeds
+    ``c g``, else ``p_r``."""
     phi_sum = 0.0
     overlap = 0.0
+    comp = 0.0
+    weight = 0.0
     for i in range(p.size):
         gi = g[i]
         gp = max(gi, 0.0)
@@ -38,7 +41,9 @@ def law_residual(p, g, model, sigma0, range_, ramp, c, image):
         cg = c * gi
         phi_sum += abs(cg) if repulsive > cg else abs(repulsive)
         overlap += max(-gi, 0.0)
-    return phi_sum, overlap
+        comp += abs(repulsive) * abs(gi)
+        weight += abs(repulsive)
+    return phi_sum, overlap, comp, weight
 
 
 @_jit

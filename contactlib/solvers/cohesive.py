@@ -33,7 +33,10 @@ Two methods, tried in this order:
    converged stage, bisected back after a failed one: :func:`_continuation`).
 
 A solve that does not meet ``tol`` comes back ``converged=False``. The residual is scale-free: the mean
-``|phi| / c`` and the interpenetration over the rms height, and the load error over ``sigma_0 + |P|``.
+``|phi| / c``, the interpenetration and the repulsive traction's weighted mean gap (``sum |p_r| |g| / sum |p_r|``,
+the weights floored at ``sigma_0 + |P|`` a point) over the rms height, and the load error over ``sigma_0 + |P|``.
+The third is the non-adhesive solvers' complementarity term: ``|phi| / c`` alone weighs a traction error by what it
+would displace one element, and let a state with no contact through at tol 1e-3.
 The interpenetration is the mean one for the frozen traction, as for the non-adhesive solvers (whose
 answers at ``tol`` 1e-8 leave a largest interpenetration of a few 1e-8 of the rms height), and the
 largest one for Newton, whose inexact steps can leave a few points far off with a small mean (a 1D
@@ -142,7 +145,8 @@ def solve_cohesive(
     (ContactState, ndarray)
         The state (``pressure`` the total traction; frozen traction: ``iterations`` the inner CG iterations,
         ``outer_iterations`` the rounds; Newton: ``iterations`` the Newton steps, ``outer_iterations`` the
-        GMRES iterations; ``solver`` names the method) and the repulsive part ``p_r`` [pressure].
+        GMRES iterations, both over every Newton solve, the continuations' failed stages included; ``solver``
+        names the method) and the repulsive part ``p_r`` [pressure].
     """
     load_control = mean_pressure is not None
     p = None if initial_pressure is None else np.array(initial_pressure, dtype=float)
@@ -152,23 +156,31 @@ def solve_cohesive(
         result = _FrozenTraction(operator, heights, adhesion, mean_pressure, penetration, tol,
                                  solve_repulsive)(p, delta)
     method = "cohesive-frozen-traction"
+    spent = [0, 0]  # Newton steps and GMRES iterations of every Newton solve: the failed ones' are reported too
+
+    def newton(law, p, delta):
+        solved = CohesiveNewton(operator, heights, law, mean_pressure, penetration, tol, max_iter)(p, delta)
+        spent[0], spent[1] = spent[0] + solved[4], spent[1] + solved[5]
+        return solved
+
     if result is None or not result[-1]:  # the frozen-traction iteration stalled: semi-smooth Newton
         method = "cohesive-newton"
         if p is None:
             p, delta = _cold_start(operator, heights, adhesion, mean_pressure, penetration, solve_repulsive)
         if delta is None:
             delta = 0.0
-        result = CohesiveNewton(operator, heights, adhesion, mean_pressure, penetration, tol, max_iter)(p, delta)
+        result = newton(adhesion, p, delta)
     if not result[-1]:  # stalled: continuation in the range (8, 4, 2, 1 times), warm-started stage to stage
         p_c, d_c = p, delta
         for factor in RANGES:
-            law = dataclasses.replace(adhesion, range=adhesion.range * factor)
-            result = CohesiveNewton(operator, heights, law, mean_pressure, penetration, tol, max_iter)(p_c, d_c)
+            result = newton(dataclasses.replace(adhesion, range=adhesion.range * factor), p_c, d_c)
             p_c, d_c = result[0], result[1]
     if not result[-1]:  # still stalled: continuation in the work of adhesion from the cold start
-        result = _continuation(operator, heights, adhesion, mean_pressure, penetration, tol, max_iter,
+        result = _continuation(newton, adhesion,
                                *_cold_start(operator, heights, adhesion, mean_pressure, penetration, solve_repulsive))
     p, delta, g, p_r, iterations, krylov, residual, converged = result
+    if method == "cohesive-newton":
+        iterations, krylov = spent
     displacement = g - (heights.max() - heights) + delta
     state = ContactState(pressure=p, gap=g, displacement=displacement, penetration=float(delta),
                          mean_pressure=float(p.mean()), iterations=iterations, residual=float(residual),
@@ -177,13 +189,13 @@ def solve_cohesive(
     return state, p_r
 
 
-def _continuation(operator, heights, adhesion, mean_pressure, penetration, tol, max_iter, p, delta):
-    """Newton along ``w -> f w``, ``f`` from :data:`FIRST_FRACTION` to 1: doubled after a converged stage,
-    moved halfway back towards the last converged one after a failed stage (at most :data:`STAGES`)."""
+def _continuation(newton, adhesion, p, delta):
+    """Newton (``newton(law, p, delta)``) along ``w -> f w``, ``f`` from :data:`FIRST_FRACTION` to 1: doubled after a
+    converged stage, moved halfway back towards the last converged one after a failed stage (at most
+    :data:`STAGES`)."""
     done, f, result = 0.0, FIRST_FRACTION, None
     for _ in range(STAGES):
-        law = dataclasses.replace(adhesion, work=adhesion.work * f)
-        trial = CohesiveNewton(operator, heights, law, mean_pressure, penetration, tol, max_iter)(p, delta)
+        trial = newton(dataclasses.replace(adhesion, work=adhesion.work * f), p, delta)
         if trial[-1]:
             p, delta, done, result = trial[0], trial[1], f, trial
             if f == 1.0:
@@ -320,9 +332,10 @@ class _FrozenTraction:
         the gap ``g`` into ``image``."""
         m, law = self.measure, self.law
         code = sweeps.MAUGIS if law.model == "maugis" else sweeps.EXPONENTIAL
-        phi_sum, overlap = sweeps.law_residual(np.ascontiguousarray(p).ravel(), np.ascontiguousarray(g).ravel(),
-                                               code, law.peak_stress, law.range, MAUGIS_RAMP, m.c, image.reshape(-1))
-        residual = max(phi_sum / m.c, overlap) / (p.size * m.hs)
+        phi_sum, overlap, comp, weight = sweeps.law_residual(
+            np.ascontiguousarray(p).ravel(), np.ascontiguousarray(g).ravel(), code, law.peak_stress, law.range,
+            MAUGIS_RAMP, m.c, image.reshape(-1))
+        residual = max(phi_sum / m.c, overlap, m.complementarity(comp, weight)) / (p.size * m.hs)
         if m.control:
             residual = max(residual, abs(float(p.mean()) - m.load) / m.pscale)
         return residual
