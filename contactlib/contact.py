@@ -20,6 +20,7 @@ from .nonsymmetric import NonSymmetricSolve
 from .inputs import check_friction, check_loads, check_tolerance, check_velocity, grid_of, periodic_of, \
     touches_edge
 from .operators import KERNELS
+from .solvers.coarse import PLATE_SET_FLOOR
 from .solvers import (ContactState, solve_active_set, solve_periodic_displacement, solve_polonsky_keer,
                       solve_semismooth)
 
@@ -395,7 +396,7 @@ def constrained_solve(operator, heights, *, monitor=None, verify_below=None, res
     if not operator.preconditionable:
         # a plate-like body (a thin remote-pressure layer): its soft long waves need a coarse space, under
         # either control (the dual iteration stalled there beyond about 5 % contact at q0 h = 0.1)
-        return solve_semismooth(operator, heights, monitor=monitor, **args)
+        return solve_semismooth(operator, heights, monitor=monitor, set_floor=PLATE_SET_FLOOR, **args)
     if not operator.definite and args["penetration"] is not None:
         args = {k: v for k, v in args.items() if k != "mean_pressure"}
         return solve_periodic_displacement(operator, heights, monitor=monitor, verify_below=verify_below, **args)

@@ -80,7 +80,8 @@ class NonSymmetricSolve:
         stall = krylov.Stall(growth=krylov.TRY_GROWTH) if first_try else krylov.Stall()
         state = solve_semismooth(body, self.values, mean_pressure=args["mean_pressure"], tol=args["tol"],
                                  max_iter=max(max_iter - used, 1), initial_pressure=start,
-                                 set_solver=body.solve_on_set, name="semismooth-gmres", monitor=stall)
+                                 set_solver=body.solve_on_set, name="semismooth-gmres", monitor=stall,
+                                 set_floor=None if op.preconditionable else coarse.PLATE_SET_FLOOR)
         return dataclasses.replace(state, iterations=state.iterations + used, outer_iterations=stall.sets)
 
     def _splitting(self) -> ContactState:

@@ -85,13 +85,16 @@ def solve_semismooth(
     monitor: Callable[[int, float, Callable[[], ContactState]], bool | None] | None = None,
     set_solver: Callable | None = None,
     name: str = "semismooth-newton",
+    set_floor: float | None = None,
 ) -> ContactState:
     """Pressure under ``heights`` [length] at ``mean_pressure`` [pressure] or ``penetration`` [length, from
     first contact, against the mean deformed plane] on a periodic ``operator`` (exactly one of the two).
 
     Same arguments and answer as :func:`.ccg.solve_polonsky_keer`; ``max_iter`` bounds the CG iterations over
     all sets, ``iterations`` counts them, ``monitor`` is called once per set update (a true return stops the
-    loop there, e.g. on a stall). ``set_solver(hp, index, start, total, tol, max_iter[, image]) -> (p on
+    loop there, e.g. on a stall). ``set_floor``: the loosest that the tightest tolerance of a changed set's solve
+    may be, relative as ``tol`` (a plate: :data:`.coarse.PLATE_SET_FLOOR`). ``set_solver(hp, index, start, total,
+    tol, max_iter[, image]) -> (p on
     the set, approach, iterations)`` (``image``, when given: the displacement of ``start`` on the set, already
     known) replaces the two-level CG on each set (a non-symmetric ``operator``:
     :meth:`.krylov.ComplexCompliance.solve_on_set`; load control only); ``name`` is the solver name reported.
@@ -121,7 +124,9 @@ def solve_semismooth(
     unit, unit_approach = np.zeros(n), None  # displacement control: the answer to a unit load on the set
     iterations, residual, inner_tol = 0, np.inf, 1e-3
     seen: set[bytes] = set()
-    floor = FLOOR_FRACTION * tol  # a set solver's tightest changed-set tolerance; tol / 16 once the sets cycle
+    # a set solver's tightest changed-set tolerance (tol / 16 once the sets cycle); the CG set solves' is tol / 16
+    floor = FLOOR_FRACTION * tol if set_solver is not None else tol / 16
+    floor = floor if set_floor is None else min(floor, set_floor)
     state = None
     image = None  # M p of the last set's answer, when the set holds: the next set solve's start, known
     for k in range(1, MAX_SETS + 1):
@@ -174,7 +179,7 @@ def solve_semismooth(
             continue
         key = following.tobytes()
         if key in seen:  # a cycle of sets: tighter solves break ties made by round-off
-            floor = tol / 16
+            floor = tol / 16 if set_floor is None else min(tol / 16, set_floor)
             inner_tol = max(tol / 16, inner_tol / 10)
         seen.add(key)
         active = following
@@ -186,7 +191,7 @@ def solve_semismooth(
         if set_solver is not None:  # inexact Newton: the set solves follow the outer residual
             inner_tol = max(floor, min(inner_tol, INNER_FORCING * residual))
         else:
-            inner_tol = min(inner_tol, max(tol / 16, 1e-3 * changed / n))
+            inner_tol = min(inner_tol, max(floor, 1e-3 * changed / n))
     return state
 
 
