@@ -511,8 +511,9 @@ def test_loose_tolerance_refuses_a_state_without_its_contact():
 def test_diverged_newton_hands_over_at_once_and_its_steps_are_reported(monkeypatch):
     """A Maugis sphere (non-periodic 128^2) at tol 1e-3: the cold Newton solve's third step throws the approach to
     -3e21. It stops there (:data:`contactlib.solvers.cohesive_newton.DIVERGED`) instead of spending 13 steps and
-    6800 GMRES iterations, the range continuation converges, and the Newton steps and GMRES iterations reported
-    are those of every solve, the failed one included."""
+    6800 GMRES iterations, returns its best state (the range continuation had started from the last one, at
+    residual 1e23, and spent 13 steps a stage there on a rough surface's path), the range continuation converges,
+    and the Newton steps and GMRES iterations reported are those of every solve, the failed one included."""
     import contactlib.solvers.cohesive_newton as cohesive_newton
 
     solves = []
@@ -520,7 +521,7 @@ def test_diverged_newton_hands_over_at_once_and_its_steps_are_reported(monkeypat
 
     def counted(self, p, delta):
         result = original(self, p, delta)
-        solves.append((result[4], result[5], result[-1]))
+        solves.append((result[4], result[5], result[-1], result[6]))
         return result
 
     monkeypatch.setattr(cohesive_newton.CohesiveNewton, "__call__", counted)
@@ -531,5 +532,6 @@ def test_diverged_newton_hands_over_at_once_and_its_steps_are_reported(monkeypat
                           periodic=False, tol=1e-3)
     assert ds.attrs["converged"] == 1 and ds.attrs["solver"].startswith("cohesive-newton")
     assert not solves[0][2] and solves[0][0] <= 5 and solves[0][1] < 1000  # the diverged first solve, cut short
+    assert solves[0][3] < 0.1  # ... handing over its best state (its last one: residual 2e22)
     assert int(ds.iterations) == sum(s[0] for s in solves) and int(ds.outer_iterations) == sum(s[1] for s in solves)
     assert float(ds.contact_area) == pytest.approx(0.3345, rel=0.02)  # tol 1e-6-1e-8: 0.3345
