@@ -32,6 +32,7 @@ import numpy as np
 import xarray as xr
 
 from . import adhesive_contact
+from ._version import __version__
 from .adhesion import Adhesion
 from .contact import _setup, periodic_of
 from .labels import attrs_for
@@ -245,6 +246,7 @@ def _label(setup, adhesion, rows, unloading, load_control, wall, length_unit, pr
     ds["full_contact_pressure"] = ((), full_p, a("full_contact_pressure"))
     ds["hysteresis_energy"] = ((), loop, a("hysteresis_energy"))
     ds.attrs.update({"Conventions": "CF-1.10", "title": "adhesive loading-unloading path",
+                     "contactlib_version": __version__,
                      "load_control": "mean_pressure" if load_control else "penetration", "wall_time": wall,
                      **{k: v for k, v in setup.attrs.items() if k != "load_control"}, **adhesion.attrs()})
     if load_control and not ok.all():

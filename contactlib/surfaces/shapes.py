@@ -5,6 +5,7 @@ from __future__ import annotations
 import numpy as np
 import xarray as xr
 
+from .._version import __version__
 from ..grid import Grid
 from ..labels import attrs_for
 
@@ -13,7 +14,7 @@ def _as_dataarray(values, grid: Grid, length_unit: str, **attrs) -> xr.DataArray
     dims = ("x", "y")[: grid.dim]
     coords = {d: (d, c, attrs_for(d, length=length_unit)) for d, c in zip(dims, grid.coordinates())}
     a = attrs_for("height", length=length_unit)
-    a.update(attrs)
+    a.update(attrs, contactlib_version=__version__)
     return xr.DataArray(values, dims=dims, coords=coords, name="height", attrs=a)
 
 

@@ -8,6 +8,7 @@ import numpy as np
 import xarray as xr
 
 from .. import fft
+from .._version import __version__
 from ..analysis import statistics
 from ..grid import Grid
 from ..labels import attrs_for
@@ -108,7 +109,8 @@ def self_affine(
     attrs.update(generator="contactlib.surfaces.self_affine", periodic=1, hurst=hurst, q_low=q_low, q_roll=q_roll,
                  q_cutoff=q_cutoff, seed=seed, anisotropy=anisotropy, angle=angle, length=float(length),
                  synthesis=synthesis,
-                 normalised_by="rms_height" if rms_height is not None else "rms_slope", target=float(target))
+                 normalised_by="rms_height" if rms_height is not None else "rms_slope", target=float(target),
+                 contactlib_version=__version__)
     return xr.DataArray(heights, dims=dims, coords=coords, name="height", attrs=attrs)
 
 
