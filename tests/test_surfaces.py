@@ -117,3 +117,17 @@ def test_bad_surface_parameters(kwargs, name):
     base.update(kwargs)
     with pytest.raises(ValueError, match=name):
         contactlib.surfaces.self_affine(64, **base)
+
+
+def test_generated_surfaces_carry_their_provenance():
+    """Every generator writes its parameters, seed and the library version into the heights' attrs (an
+    adhesion_curve Dataset too): a surface saved on its own says what made it."""
+    made = [contactlib.surfaces.self_affine(16, hurst=0.8, q_roll=1, q_cutoff=4, rms_slope=0.1, seed=7),
+            contactlib.surfaces.wavy(16, amplitude=0.1), contactlib.surfaces.paraboloid(16, length=1.0, radius=1.0),
+            contactlib.surfaces.spheres(32, radius=0.5, lattice=2, summit_height=0.01)]
+    for h in made:
+        assert h.attrs["contactlib_version"] == contactlib.__version__ and h.attrs["generator"].startswith("contactlib")
+    assert made[0].attrs["seed"] == 7
+    curve = contactlib.adhesion_curve(made[1], E=1.0, nu=0.0, adhesion=contactlib.Adhesion(work=1e-4, model="jkr"),
+                                      mean_pressures=[0.0, 0.01])
+    assert curve.attrs["contactlib_version"] == contactlib.__version__
