@@ -22,6 +22,7 @@ and ``contactlib.solve(..., target_error=...)`` uses them (it picks ``tol`` and 
 from __future__ import annotations
 
 import math
+import numbers
 import warnings
 
 import numpy as np
@@ -201,7 +202,7 @@ def check_resolution(heights, target_error: float, *, length=None, quantity: str
 
 
 def _check_target(target_error) -> None:
-    if not (isinstance(target_error, (int, float)) and 0 < target_error < 1):
+    if not (isinstance(target_error, numbers.Real) and 0 < target_error < 1):
         raise ValueError(f"target_error must lie in (0, 1), got {target_error!r}")
 
 

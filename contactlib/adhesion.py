@@ -21,6 +21,7 @@ zone ``pi K_I^2 / (8 sigma_0^2)`` with ``K_I^2 = 2 E* w`` at a rigid-elastic int
 from __future__ import annotations
 
 import math
+import numbers
 import warnings
 from dataclasses import dataclass
 
@@ -77,11 +78,11 @@ class Adhesion:
         if self.model not in MODELS:
             raise ValueError(f"model (adhesion law) must be one of {MODELS}, got {self.model!r}")
         w = self.work
-        if isinstance(w, bool) or not isinstance(w, (int, float)) or not math.isfinite(w) or w < 0:
+        if isinstance(w, bool) or not isinstance(w, numbers.Real) or not math.isfinite(w) or w < 0:
             raise ValueError(f"work (work of adhesion) must be a finite number >= 0, got {w!r}")
         if self.model != "jkr":
             r = self.range
-            if isinstance(r, bool) or not isinstance(r, (int, float)) or not math.isfinite(r) or r <= 0:
+            if isinstance(r, bool) or not isinstance(r, numbers.Real) or not math.isfinite(r) or r <= 0:
                 raise ValueError(f"range (cohesive range) must be a finite number > 0 for model={self.model!r}, "
                                  f"got {r!r}")
 

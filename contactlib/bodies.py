@@ -38,6 +38,7 @@ import contextlib
 import contextvars
 import dataclasses
 import math
+import numbers
 from dataclasses import dataclass
 from functools import partial
 
@@ -90,7 +91,7 @@ class Layer:
 
     def __post_init__(self):
         t = self.thickness
-        if isinstance(t, bool) or not isinstance(t, (int, float)) or not math.isfinite(t) or t <= 0:
+        if isinstance(t, bool) or not isinstance(t, numbers.Real) or not math.isfinite(t) or t <= 0:
             raise ValueError(f"thickness (layer thickness) must be a finite number > 0, got {t!r}")
         if self.base not in BASES:
             raise ValueError(f"base must be one of {BASES}, got {self.base!r}")

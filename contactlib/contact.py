@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import dataclasses
+import math
 import time
 
 import numpy as np
@@ -17,8 +18,8 @@ from .materials import Elastic, Viscoelastic, contact_modulus, material_of
 from .bodies import BodyModel, Layer, body_model
 from .grid import Grid
 from .nonsymmetric import NonSymmetricSolve
-from .inputs import check_friction, check_loads, check_tolerance, check_velocity, grid_of, periodic_of, \
-    touches_edge
+from .inputs import check_friction, check_iterations, check_loads, check_tolerance, check_velocity, grid_of, \
+    periodic_of, touches_edge
 from .operators import KERNELS
 from .solvers.coarse import PLATE_SET_FLOOR
 from .solvers import (ContactState, solve_active_set, solve_periodic_displacement, solve_polonsky_keer,
@@ -425,8 +426,7 @@ def _setup(heights, *, material, mean_pressure, penetration, periodic, tol, max_
             accuracy.check_resolution(values, target_error, length=grid.lengths)
     tol = (1e-8 if adhesion is None else adhesive_contact.DEFAULT_TOL) if tol is None else tol
     check_tolerance(tol, "tol")
-    if int(max_iter) < 1:
-        raise ValueError(f"max_iter must be >= 1, got {max_iter!r}")
+    check_iterations(max_iter)
     if kernel not in KERNELS:
         raise ValueError(f"kernel must be one of {KERNELS}, got {kernel!r}")
     if method not in METHODS:
@@ -434,14 +434,21 @@ def _setup(heights, *, material, mean_pressure, penetration, periodic, tol, max_
     check_friction(layer, friction, sliding_direction, nu, method, kernel, periodic)
     velocity, sliding_direction = check_velocity(sliding_velocity, sliding_direction, grid.dim, material, method,
                                                   periodic)
+    if grid.dim == 1 and abs(math.sin(sliding_direction)) > 1e-12:
+        raise ValueError(f"sliding_direction must be 0 (+x) or pi (-x) for a profile (1D heights), got "
+                         f"{sliding_direction!r}")
     if adhesion is not None and velocity is not None and any(v != 0 for v in velocity):
         raise ValueError(f"sliding_velocity: adhesion is modelled at rest (a steady sliding adhesive contact is not "
                          f"supported), got sliding_velocity={sliding_velocity!r} with adhesion")
     warm = None
-    if method == "cg" and initial_pressure is not None:
+    if initial_pressure is not None:
+        if method != "cg":
+            raise ValueError(f"initial_pressure: a warm start is for method='cg', got method={method!r}")
         warm = np.asarray(initial_pressure, dtype=float)
         if warm.shape != values.shape:
             raise ValueError(f"initial_pressure has shape {warm.shape}, heights {values.shape}")
+        if not np.all(np.isfinite(warm)):
+            raise ValueError("initial_pressure contains NaN or infinite values")
     body = body_model(grid, material=material, layer=layer, friction=float(friction),
                       direction=float(sliding_direction), tol=tol, kernel=kernel, periodic=periodic, velocity=velocity)
     if not body.compliance.definite and penetration is not None and penetration >= values.max() - values.mean():

@@ -5,6 +5,7 @@ before anything is built."""
 from __future__ import annotations
 
 import math
+import numbers
 
 import numpy as np
 import xarray as xr
@@ -19,18 +20,17 @@ def grid_of(heights, length=None) -> tuple[np.ndarray, Grid, tuple[str, ...], di
     if isinstance(heights, xr.DataArray):
         values = np.asarray(heights.values, dtype=float)
         dims = tuple(heights.dims)
+        window = _window_of(heights) if all(d in heights.coords for d in dims) else None
         if length is None:
-            lengths = []
-            for d in dims:
-                if d not in heights.coords:
-                    raise ValueError(f"heights: dimension {d!r} has no coordinate; pass length=")
-                c = np.asarray(heights[d].values, dtype=float)
-                if c.size < 2:
-                    raise ValueError(f"heights: grid smaller than 2 points along {d!r}")
-                lengths.append(float(c[1] - c[0]) * c.size)
-            lengths = tuple(lengths)
+            if window is None:
+                missing = next(d for d in dims if d not in heights.coords)
+                raise ValueError(f"heights: dimension {missing!r} has no coordinate; pass length=")
+            lengths = window
         else:
             lengths = lengths_of(length, values.ndim)
+            if window is not None and any(abs(a - b) > 1e-9 * b for a, b in zip(lengths, window)):
+                raise ValueError(f"length {length!r} differs from the heights' window {window} (coordinate step "
+                                 "times points): omit length, or give the heights as an ndarray")
         coords = {d: heights[d] for d in dims if d in heights.coords}
     else:
         values = np.asarray(heights, dtype=float)
@@ -51,6 +51,22 @@ def grid_of(heights, length=None) -> tuple[np.ndarray, Grid, tuple[str, ...], di
     return np.ascontiguousarray(values), grid, dims, coords
 
 
+def _window_of(heights: xr.DataArray) -> tuple[float, ...]:
+    """The window lengths of a DataArray's coordinates (step times points), refused unless each coordinate is
+    finite, increasing and evenly spaced (the FFT grid's)."""
+    lengths = []
+    for d in heights.dims:
+        c = np.asarray(heights[d].values, dtype=float)
+        if c.size < 2:
+            raise ValueError(f"heights: grid smaller than 2 points along {d!r}")
+        steps = np.diff(c)
+        if not (np.all(np.isfinite(steps)) and steps[0] > 0 and np.max(np.abs(steps - steps[0])) <= 1e-6 * steps[0]):
+            raise ValueError(f"heights: coordinate {d!r} must be finite, increasing and evenly spaced (the FFT "
+                             f"grid's), got steps from {float(np.min(steps)):.6g} to {float(np.max(steps)):.6g}")
+        lengths.append(float(steps[0]) * c.size)
+    return tuple(lengths)
+
+
 def periodic_of(heights, periodic: bool | None) -> bool:
     """``periodic`` if given, else what a DataArray's ``attrs['periodic']`` says (a measured surface from
     :func:`contactlib.surfaces.read` is non-periodic unless its file or reader said so), else True."""
@@ -62,7 +78,10 @@ def periodic_of(heights, periodic: bool | None) -> bool:
 
 
 def lengths_of(length, ndim: int) -> tuple[float, ...]:
-    lengths = tuple(float(v) for v in np.broadcast_to(np.asarray(length, dtype=float), (ndim,)))
+    try:
+        lengths = tuple(float(v) for v in np.broadcast_to(np.asarray(length, dtype=float), (ndim,)))
+    except (TypeError, ValueError):
+        raise ValueError(f"length must be a number or one per axis ({ndim}), finite and > 0, got {length!r}") from None
     for v in lengths:
         if not math.isfinite(v) or v <= 0:
             raise ValueError(f"length must be finite and > 0, got {length!r}")
@@ -70,13 +89,24 @@ def lengths_of(length, ndim: int) -> tuple[float, ...]:
 
 
 def check_tolerance(value, name: str) -> None:
-    if not (isinstance(value, (int, float)) and math.isfinite(value) and value > 0):
-        raise ValueError(f"{name} must be finite and > 0, got {value!r}")
+    """A relative tolerance: a number in (0, 1) (at 1 or more the initial guess already meets it)."""
+    if isinstance(value, bool) or not (isinstance(value, numbers.Real) and math.isfinite(value) and 0 < value < 1):
+        raise ValueError(f"{name} must be a number in (0, 1), got {value!r}")
+
+
+def check_iterations(value, name: str = "max_iter") -> None:
+    """An iteration bound: a whole number >= 1."""
+    if isinstance(value, bool) or not isinstance(value, numbers.Real) or not math.isfinite(value) \
+            or int(value) != value or value < 1:
+        raise ValueError(f"{name} must be a whole number >= 1, got {value!r}")
 
 
 def check_loads(mean_pressure, penetration) -> None:
     if (mean_pressure is None) == (penetration is None):
         raise ValueError("give exactly one of mean_pressure or penetration")
+    for name, value in (("mean_pressure", mean_pressure), ("penetration", penetration)):
+        if value is not None and (isinstance(value, bool) or not isinstance(value, numbers.Real)):
+            raise ValueError(f"{name} must be a number, got {value!r}")
     if mean_pressure is not None and (not math.isfinite(mean_pressure) or mean_pressure < 0):
         raise ValueError(f"mean_pressure must be finite and >= 0, got {mean_pressure!r}")
     if penetration is not None and not math.isfinite(penetration):
@@ -93,10 +123,10 @@ def check_friction(layer, friction, sliding_direction, nu, method, kernel, perio
             raise ValueError(f"nu (Poisson ratio) must lie in [0, 0.5] for a layer, got {nu!r}")
         if not periodic:
             raise ValueError("layer: a layer is modelled on a periodic window only (periodic=True)")
-    if isinstance(friction, bool) or not isinstance(friction, (int, float)) or not math.isfinite(friction) \
+    if isinstance(friction, bool) or not isinstance(friction, numbers.Real) or not math.isfinite(friction) \
             or friction < 0:
         raise ValueError(f"friction (Coulomb coefficient) must be a finite number >= 0, got {friction!r}")
-    if isinstance(sliding_direction, bool) or not isinstance(sliding_direction, (int, float)) \
+    if isinstance(sliding_direction, bool) or not isinstance(sliding_direction, numbers.Real) \
             or not math.isfinite(sliding_direction):
         raise ValueError(f"sliding_direction must be a finite angle [rad], got {sliding_direction!r}")
     if method == "active-set" and (layer is not None or friction > 0):

@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import logging
 import math
+import numbers
 import time as _time
 from collections.abc import Callable
 
@@ -76,7 +77,7 @@ def solve_reciprocating(
         ``friction_work_per_cycle`` of the last cycle; ``attrs['status']`` ``"settled"`` or not.
     """
     for value, name in ((amplitude, "amplitude"), (frequency, "frequency")):
-        if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value) or value <= 0:
+        if isinstance(value, bool) or not isinstance(value, numbers.Real) or not math.isfinite(value) or value <= 0:
             raise ValueError(f"{name} must be a finite number > 0, got {value!r}")
     if isinstance(steps_per_cycle, bool) or not isinstance(steps_per_cycle, int) or steps_per_cycle < 4:
         raise ValueError(f"steps_per_cycle must be an integer >= 4, got {steps_per_cycle!r}")
@@ -89,7 +90,7 @@ def solve_reciprocating(
         raise ValueError(f"tol {tol!r} must be at most a tenth of cycle_tol {cycle_tol!r}: the change between cycles "
                          "cannot settle below the error of the steps' solves (a rough profile at tol 1e-3 and 3e-4 "
                          "against cycle_tol 1e-3 did not settle in 40 cycles; 1e-4 settled in 6)")
-    if not isinstance(direction, (int, float)) or not math.isfinite(direction):
+    if not isinstance(direction, numbers.Real) or not math.isfinite(direction):
         raise ValueError(f"direction must be a finite angle [rad], got {direction!r}")
     dt = 1.0 / (frequency * steps_per_cycle)
     cycle_times = np.arange(steps_per_cycle + 1) * dt

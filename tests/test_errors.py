@@ -26,12 +26,43 @@ def heights():
     (dict(kernel="boussinesq"), "kernel"),
     (dict(method="newton"), "method"),
     (dict(max_iter=0), "max_iter"),
+    (dict(max_iter=2.5), "max_iter must be a whole number"),
+    (dict(max_iter=float("nan")), "max_iter must be a whole number"),
+    (dict(tol=1.0), "tol must be a number in \\(0, 1\\)"),  # the initial guess met it: "converged", 0 iterations
+    (dict(tol=2.0), "tol must be a number in"),
+    (dict(mean_pressure="0.01"), "mean_pressure must be a number"),
+    (dict(initial_pressure=np.full((32, 32), np.nan)), "initial_pressure contains NaN"),  # was a ZeroDivisionError
+    (dict(initial_pressure=np.zeros((32, 32)), method="active-set"), "initial_pressure: a warm start is for"),
+    (dict(length=(1.0, 1.0, 1.0)), "length must be a number or one per axis"),
 ])
 def test_bad_parameters(heights, kwargs, match):
     args = dict(E=1.0, nu=0.3, mean_pressure=0.01)
     args.update(kwargs)
     with pytest.raises(ValueError, match=match):
         contactlib.solve(heights, **args)
+
+
+def test_coordinates_set_the_window_and_must_be_a_grid(heights):
+    """A DataArray's window comes from its coordinates: a different ``length`` was used silently (area 0.70 instead
+    of 0.22), and an uneven coordinate gave a window from its first step; both refused, naming the parameter."""
+    with pytest.raises(ValueError, match="length 5.0 differs from the heights' window"):
+        contactlib.solve(heights, E=1.0, nu=0.3, mean_pressure=0.01, length=5.0)
+    same = contactlib.solve(heights, E=1.0, nu=0.3, mean_pressure=0.01, length=1.0)  # agreeing: accepted
+    assert float(same.contact_area) == float(contactlib.solve(heights, E=1.0, nu=0.3, mean_pressure=0.01).contact_area)
+    x = heights.x.values.copy()
+    x[5] = 0.9
+    with pytest.raises(ValueError, match="coordinate 'x' must be finite, increasing and evenly spaced"):
+        contactlib.solve(heights.assign_coords(x=x), E=1.0, nu=0.3, mean_pressure=0.01)
+
+
+def test_numpy_scalars_are_numbers(heights):
+    """np.float32 values (not Python floats) were refused as "must be a finite number" for tol, friction, the
+    layer's thickness and the adhesion law; np.float64 always passed."""
+    f32 = np.float32
+    out = contactlib.solve(heights, E=1.0, nu=f32(0.3), mean_pressure=f32(0.01), tol=f32(1e-6), friction=f32(0.3),
+                           sliding_direction=f32(0.0), layer=contactlib.Layer(f32(0.2)))
+    assert out.attrs["converged"] == 1
+    assert contactlib.Adhesion(work=f32(1e-5), range=f32(1e-3)).work == pytest.approx(1e-5)
 
 
 @pytest.mark.parametrize("bad", [np.nan, np.inf])

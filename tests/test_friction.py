@@ -202,6 +202,34 @@ def test_2d_sliding_direction_rotates_with_the_surface():
                                atol=1e-5 * float(np.abs(a.tangential_displacement_x).max()))
 
 
+@pytest.mark.parametrize("scene", ["half-space", "confined layer", "non-periodic cylinder"])
+def test_1d_sliding_towards_minus_x_is_the_mirror_image(scene):
+    """A profile sliding along -x (``sliding_direction=pi``) is the mirror image of its mirror sliding along +x. The 1D
+    coupling had ignored the direction: the -x pressure was the +x one bit for bit (0.025 off the mirror's, half
+    the peak), while its tangential traction and mu_a flipped sign."""
+    x = np.arange(128) / 128
+    h = 0.01 * np.cos(2 * np.pi * x) + 0.002 * np.sin(6 * np.pi * x)
+    kw = dict(E=1.0, nu=0.3, mean_pressure=0.01, friction=0.5, tol=1e-10)
+    mirror = (lambda a: np.roll(a[::-1], 1))  # x -> -x on the periodic grid
+    if scene == "confined layer":
+        kw["layer"] = contactlib.Layer(0.05)
+    elif scene == "non-periodic cylinder":
+        tilt = 0.002 * np.sin(7 * np.linspace(0, 1, 257))  # makes the cylinder asymmetric
+        h = contactlib.surfaces.paraboloid(257, length=1.0, radius=1.0, dim=1).values + tilt
+        kw.update(periodic=False, mean_pressure=2e-3)
+        mirror = (lambda a: a[::-1])  # an odd number of points: the centre stays put
+    back = contactlib.solve(h, sliding_direction=np.pi, **kw)
+    ahead = contactlib.solve(mirror(h), sliding_direction=0.0, **kw)
+    np.testing.assert_allclose(back.pressure.values, mirror(ahead.pressure.values), rtol=0,
+                               atol=1e-8 * float(ahead.pressure.max()))
+    same = contactlib.solve(h, sliding_direction=0.0, **kw)
+    assert np.abs(back.pressure.values - same.pressure.values).max() > 0.01 * float(same.pressure.max())
+    assert float(back.friction_coefficient_interlocking) == pytest.approx(
+        float(ahead.friction_coefficient_interlocking), rel=1e-6)
+    with pytest.raises(ValueError, match="sliding_direction must be 0 .* or pi"):
+        contactlib.solve(h, sliding_direction=1.0, **kw)
+
+
 def test_geometric_coupling_on_thin_incompressible_layer_resists_sliding():
     """nu = 0.5 on a thin confined layer: the pressure leans to the leading side, mu_a > 0 (seed 2, Fig. 6a)."""
     h = _profile(2048)

@@ -48,11 +48,13 @@ class SurfaceGreenTensor:
 
     def coupling_multiplier(self, grid: Grid, direction: float) -> np.ndarray:
         """``-i c (q . s)/|q|``: the normal displacement per unit tangential traction along
-        ``s = (cos direction, sin direction)`` (1D: along ``+x``) [length/pressure], complex."""
+        ``s = (cos direction, sin direction)`` (1D: ``cos direction = +-1``, along ``+-x``) [length/pressure],
+        complex."""
         q = grid.wavevectors()
         k = grid.wavenumber()
         safe = np.where(k > 0, k, 1.0)
-        along = np.sign(q[0]) if grid.dim == 1 else (q[0] * np.cos(direction) + q[1] * np.sin(direction)) / safe
+        along = np.sign(q[0]) * np.cos(direction) if grid.dim == 1 else \
+            (q[0] * np.cos(direction) + q[1] * np.sin(direction)) / safe
         return -1j * self.coupling * np.where(k > 0, along, 0.0)
 
     def tangential_displacement(self, grid: Grid, pressure_spectrum: np.ndarray, traction_spectra) -> tuple:
@@ -148,14 +150,14 @@ def halfspace_coupling_influence(grid: Grid, E: float, nu: float, direction: flo
     """Non-periodic normal displacement per unit tangential traction along ``direction``, on the padded
     ``2n`` circular layout (the real-space counterpart of :meth:`SurfaceGreenTensor.coupling_multiplier`).
 
-    1D: ``(1 - 2 nu)(1 + nu) / (2 E) dx sgn(x)`` (Johnson eq. 2.20b; exact for a uniform element at the
+    1D: ``(1 - 2 nu)(1 + nu) / (2 E) dx sgn(x) cos(direction)`` (Johnson eq. 2.20b; exact for a uniform element at the
     nodes). 2D: Cerruti's ``(1 - 2 nu)(1 + nu) / (2 pi E) dA (x . s) / r^2`` for the element's load at
     its node (Johnson eq. 3.86); both odd, so an element's own term is zero.
     """
     off = _offsets(grid)
     k0 = (1 - 2 * nu) * (1 + nu) / (2 * E)
     if grid.dim == 1:
-        return k0 * grid.spacing[0] * np.sign(off[0])
+        return k0 * grid.spacing[0] * np.sign(off[0]) * np.cos(direction)
     x, y = off
     r2 = x**2 + y**2
     along = x * np.cos(direction) + y * np.sin(direction)

@@ -9,6 +9,7 @@ stepping (:mod:`.transient`).
 from __future__ import annotations
 
 import math
+import numbers
 import time
 
 import numpy as np
@@ -220,12 +221,12 @@ def solve(
         raise ValueError(f"penetration must be finite, got {penetration!r}")
     if macro_tol is None:
         outer = force_tol if force_tol is not None else tol
-        valid = isinstance(outer, (int, float)) and math.isfinite(outer) and outer > 0  # else refused below
+        valid = isinstance(outer, numbers.Real) and math.isfinite(outer) and outer > 0  # else refused below
         macro_tol = (min(max(START_TOL_FACTOR * outer, START_TOL_MIN), MACRO_TOL) if scale == "two-scale" and valid
                      else MACRO_TOL)
     for name, value in (("tol", tol), ("macro_tol", macro_tol)) + ((("force_tol", force_tol),) if force_tol is not None
                                                                     else ()):
-        if not (isinstance(value, (int, float)) and math.isfinite(value) and value > 0):
+        if not (isinstance(value, numbers.Real) and math.isfinite(value) and value > 0):
             raise ValueError(f"{name} must be finite and > 0, got {value!r}")
     if int(max_iter) < 1:
         raise ValueError(f"max_iter must be >= 1, got {max_iter!r}")

@@ -31,6 +31,7 @@ micro scale converges to the full transient solver's step, up to its tolerance.
 from __future__ import annotations
 
 import math
+import numbers
 import time as _time
 import warnings
 
@@ -147,12 +148,12 @@ def solve_transient(
     from . import MACRO_TOL, START_TOL_FACTOR, START_TOL_MIN, _table_with_grid  # the package imports this module
     if macro_tol is None:
         outer = force_tol if force_tol is not None else tol
-        valid = isinstance(outer, (int, float)) and math.isfinite(outer) and outer > 0  # else refused below
+        valid = isinstance(outer, numbers.Real) and math.isfinite(outer) and outer > 0  # else refused below
         macro_tol = min(max(START_TOL_FACTOR * outer, START_TOL_MIN), MACRO_TOL) if scale == "two-scale" and valid \
             else MACRO_TOL_TRANSIENT
     for name, value in (("tol", tol), ("macro_tol", macro_tol)) + ((("force_tol", force_tol),) if force_tol is not None
                                                                     else ()):
-        if not (isinstance(value, (int, float)) and math.isfinite(value) and value > 0):
+        if not (isinstance(value, numbers.Real) and math.isfinite(value) and value > 0):
             raise ValueError(f"{name} must be finite and > 0, got {value!r}")
     if isinstance(max_iter, bool) or not isinstance(max_iter, (int, np.integer)) or max_iter < 1:
         raise ValueError(f"max_iter must be an integer >= 1, got {max_iter!r}")
