@@ -81,11 +81,14 @@ def adhesion_curve(
     -------
     xarray.Dataset
         Along dimension ``step``: ``penetration``, ``mean_pressure``, ``contact_area``,
-        ``interaction_area``, ``unloading``, ``jump``, ``converged``; scalars ``pull_off_pressure``,
+        ``interaction_area``, ``unloading``, ``jump``, ``converged``, ``residual``; scalars ``pull_off_pressure``,
         ``pull_off_penetration``, ``jump_in_penetration``, ``full_contact_penetration`` and
         ``full_contact_pressure`` (the first fully closed state on loading),
-        ``hysteresis_energy``.
+        ``hysteresis_energy``. ``attrs['converged']`` is 0 where a step of a penetration-controlled path failed:
+        the scalars are then NaN and ``attrs['convergence_message']`` names the steps.
     """
+    if adhesion is None or not hasattr(adhesion, "model"):
+        raise ValueError(f"adhesion must be a contactlib.Adhesion, got {adhesion!r}")
     if (penetrations is None) == (mean_pressures is None):
         raise ValueError("give exactly one of penetrations or mean_pressures")
     load_control = mean_pressures is not None
@@ -115,7 +118,7 @@ def _cohesive_path(setup, adhesion, path, load_control):
     for value in path:
         args = dict(setup.solver_args, mean_pressure=None, penetration=None)
         args["mean_pressure" if load_control else "penetration"] = float(value)
-        state = None
+        state, closest = None, math.nan
         # warm start, then the non-adhesive state, then the open one (a jump lands on either)
         for attempt in (warm, None, np.zeros_like(setup.values)):
             setup.solver_args = dict(args, initial_pressure=attempt)
@@ -127,14 +130,16 @@ def _cohesive_path(setup, adhesion, path, load_control):
             if candidate.converged:
                 state = candidate
                 break
+            closest = float(np.fmin(closest, candidate.residual))
         if state is None:
-            rows.append(_failed_row(value, load_control))
+            rows.append(_failed_row(value, load_control, closest))
             continue
         area = float(np.count_nonzero(state.in_contact)) / state.in_contact.size
         jump = _jumped(area, area_before, state.in_contact.size)
         rows.append({"penetration": state.penetration, "mean_pressure": state.mean_pressure, "contact_area": area,
                      "interaction_area": float(np.count_nonzero(adhesion.interacting(state.gap)))
-                     / state.gap.size, "jump": int(jump and bool(rows)), "converged": 1})
+                     / state.gap.size, "jump": int(jump and bool(rows)), "converged": 1,
+                     "residual": state.residual})
         warm, warm_d, area_before = state.pressure, state.penetration, area
     return rows
 
@@ -150,9 +155,9 @@ def _jumped(area: float, before: float, size: int) -> bool:
     return (area > 0) != (before > 0) or _full(area, size) != _full(before, size)
 
 
-def _failed_row(value, load_control):
+def _failed_row(value, load_control, residual=math.nan):
     row = {"penetration": math.nan, "mean_pressure": math.nan, "contact_area": math.nan,
-           "interaction_area": math.nan, "jump": 1, "converged": 0}
+           "interaction_area": math.nan, "jump": 1, "converged": 0, "residual": residual}
     row["mean_pressure" if load_control else "penetration"] = float(value)
     return row
 
@@ -174,7 +179,7 @@ def _energy_path(setup, adhesion, path, load_control):
                 # the closed window: its penetration is the mean of max h - h, its load whatever is applied
                 rows.append({"penetration": float(np.mean(fam.h0)), "mean_pressure": float(value),
                              "contact_area": 1.0, "interaction_area": 1.0, "converged": 1,
-                             "jump": int(m != largest)})
+                             "jump": int(m != largest), "residual": 0.0})  # exact: the flat punch
                 m = largest
                 continue
             if m_new is None:
@@ -189,7 +194,8 @@ def _energy_path(setup, adhesion, path, load_control):
         before = 0.0 if m < 0 else 1.0 if m >= fam.ends.size else float(fam.ends[m]) / fam.size
         jump = _jumped(area, before, fam.size)
         rows.append({"penetration": d, "mean_pressure": state.mean_pressure, "contact_area": area,
-                     "interaction_area": area, "converged": int(state.converged), "jump": int(bool(rows) and jump)})
+                     "interaction_area": area, "converged": int(state.converged), "jump": int(bool(rows) and jump),
+                     "residual": state.residual})
         m = m_new
     return rows
 
@@ -215,6 +221,9 @@ def _label(setup, adhesion, rows, unloading, load_control, wall, length_unit, pr
         data[key] = ("step", np.array([r[key] for r in rows], dtype=float if key != "jump" else int), a(key))
     data["converged"] = ("step", np.array([r["converged"] for r in rows]),
                          {"units": "1", "long_name": "1 where the state's solve met its tolerance"})
+    data["residual"] = ("step", np.array([r.get("residual", math.nan) for r in rows], dtype=float),
+                        {"units": "1", "long_name": "scale-free contact residual of the state (a failed step: the "
+                                                   "smallest its attempts reached; NaN: none returned one)"})
     data["unloading"] = ("step", unloading, a("unloading"))
     ds = xr.Dataset(data, coords={"step": ("step", step, a("step"))})
     d, P, area = ds["penetration"].values, ds["mean_pressure"].values, ds["contact_area"].values
@@ -253,4 +262,16 @@ def _label(setup, adhesion, rows, unloading, load_control, wall, length_unit, pr
         first = int(np.flatnonzero(~ok)[0])
         ds.attrs["detached"] = (f"no adhesive equilibrium from step {first} (mean pressure "
                                 f"{ds['mean_pressure'].values[first]:.6g}): pulled off under load control")
+    failed = np.flatnonzero(ds["converged"].values == 0)
+    if failed.size and not load_control:
+        # under penetration control every step has an equilibrium: a failed one leaves a hole in the path, and
+        # the path's scalars read across it (a pull-off from the compressive steps alone came out positive)
+        for name in ("pull_off_pressure", "pull_off_penetration", "jump_in_penetration", "full_contact_penetration",
+                     "full_contact_pressure", "hysteresis_energy"):
+            ds[name] = ((), math.nan, a(name))
+        ds.attrs["converged"] = 0
+        ds.attrs["convergence_message"] = (f"steps {failed.tolist()[:10]} did not converge (residual per step in "
+                                           "`residual`): the path's scalars are NaN")
+    else:
+        ds.attrs["converged"] = 1
     return ds

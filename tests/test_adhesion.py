@@ -535,3 +535,21 @@ def test_diverged_newton_hands_over_at_once_and_its_steps_are_reported(monkeypat
     assert solves[0][3] < 0.1  # ... handing over its best state (its last one: residual 2e22)
     assert int(ds.iterations) == sum(s[0] for s in solves) and int(ds.outer_iterations) == sum(s[1] for s in solves)
     assert float(ds.contact_area) == pytest.approx(0.3345, rel=0.02)  # tol 1e-6-1e-8: 0.3345
+
+
+def test_adhesion_curve_flags_failed_steps_and_withholds_its_scalars():
+    """Penetration control: a step whose solve fails leaves a hole in the path. Its scalars were read across the hole
+    (a pull-off from the compressive steps alone came out positive) and nothing in attrs said so. Now the residual
+    of every step is reported, attrs say which steps failed, and the path's scalars are NaN."""
+    x = (np.arange(128) - 64) / 128
+    cyl = -x**2 / 2
+    law = Adhesion(work=1e-4, range=2e-3)
+    failed = contactlib.adhesion_curve(cyl, E=1.0, nu=0.3, adhesion=law, penetrations=[0, 0.004], tol=1e-300)
+    assert failed.attrs["converged"] == 0 and "did not converge" in failed.attrs["convergence_message"]
+    assert np.any(failed.converged.values == 0) and np.all(np.isfinite(failed.residual.values))
+    assert np.isnan(float(failed.pull_off_pressure)) and np.isnan(float(failed.hysteresis_energy))
+    fine = contactlib.adhesion_curve(cyl, E=1.0, nu=0.3, adhesion=law, penetrations=[0, 0.004])
+    assert fine.attrs["converged"] == 1 and float(fine.pull_off_pressure) < 0
+    assert np.all(fine.residual.values <= 1e-6) and fine.residual.attrs["units"] == "1"
+    with pytest.raises(ValueError, match="adhesion must be a contactlib.Adhesion"):
+        contactlib.adhesion_curve(cyl, E=1.0, nu=0.3, adhesion=None, penetrations=[0, 0.004])
