@@ -54,7 +54,8 @@ class Adhesion:
     Parameters
     ----------
     work : float
-        Work of adhesion (Dupre energy) ``w`` [pressure * length = energy / area], ``>= 0``.
+        Work of adhesion (Dupre energy) ``w`` [pressure * length = energy / area], ``> 0`` for a cohesive law,
+        ``>= 0`` for ``"jkr"``.
     range : float, optional
         Range of the cohesive law [length], ``> 0``: the gap over which the Maugis-Dugdale stress
         ``w / range`` acts, or the decay length of the exponential law. Ignored (optional) for ``"jkr"``.
@@ -66,8 +67,8 @@ class Adhesion:
     Raises
     ------
     ValueError
-        Naming the parameter: ``work`` negative, NaN or infinite; ``range`` not finite and ``> 0`` for a
-        cohesive law; an unknown ``model``.
+        Naming the parameter: ``work`` negative, NaN or infinite (or 0 for a cohesive law); ``range`` not
+        finite and ``> 0`` for a cohesive law; an unknown ``model``.
     """
 
     work: float
@@ -81,6 +82,9 @@ class Adhesion:
         if isinstance(w, bool) or not isinstance(w, numbers.Real) or not math.isfinite(w) or w < 0:
             raise ValueError(f"work (work of adhesion) must be a finite number >= 0, got {w!r}")
         if self.model != "jkr":
+            if w == 0:  # a law without stress: its residual's scale sigma_0 + |P| vanished at zero load
+                raise ValueError(f"work (work of adhesion) must be > 0 for model={self.model!r}: without adhesion, "
+                                 "leave adhesion= out")
             r = self.range
             if isinstance(r, bool) or not isinstance(r, numbers.Real) or not math.isfinite(r) or r <= 0:
                 raise ValueError(f"range (cohesive range) must be a finite number > 0 for model={self.model!r}, "

@@ -18,8 +18,8 @@ from .materials import Elastic, Viscoelastic, contact_modulus, material_of
 from .bodies import BodyModel, Layer, body_model
 from .grid import Grid
 from .nonsymmetric import NonSymmetricSolve
-from .inputs import check_friction, check_iterations, check_loads, check_tolerance, check_velocity, grid_of, \
-    periodic_of, touches_edge
+from .inputs import EDGE_TENSION, check_friction, check_iterations, check_loads, check_tolerance, check_velocity, \
+    edge_tension, grid_of, periodic_of, touches_edge
 from .operators import KERNELS
 from .solvers.coarse import PLATE_SET_FLOOR
 from .solvers import (ContactState, solve_active_set, solve_periodic_displacement, solve_polonsky_keer,
@@ -372,6 +372,13 @@ class _Setup(NonSymmetricSolve):
             raise ValueError(
                 "periodic=False: the contact reaches the edge of the window, so the surface outside it would "
                 "carry load too; enlarge the window (or use periodic=True for a periodic surface)"
+            )
+        if not self.operator.periodic and self.adhesion is not None and state.converged \
+                and edge_tension(state.pressure, self.adhesion.peak_stress):
+            raise ValueError(
+                "periodic=False: the adhesive zone reaches the edge of the window (tension above "
+                f"{EDGE_TENSION:g} of the law's peak stress there), so adhesion beyond it is cut off; enlarge the "
+                "window (or use periodic=True for a periodic surface)"
             )
         if not state.converged:
             tol, max_iter = ds.attrs["tol"], self.solver_args["max_iter"]

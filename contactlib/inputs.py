@@ -171,6 +171,19 @@ contact: a converged cohesive state (256^2 JKR sphere, tol 1e-6) kept +5e-56 on 
 traction is zero, 1e-54 of its peak adhesive stress, and was refused as a contact cut by the window."""
 
 
+EDGE_TENSION = 0.5
+"""Adhesive tension on a non-periodic window's edge above this fraction of the law's peak stress: the cohesive zone
+itself reaches the edge (a Maugis law's stress is the peak all across it; an exponential law's is above half of it
+within 0.69 ranges of gap), so the window cuts off adhesion that acts beyond it: refused, as compression there is.
+An exponential law's weaker tail at the edge is left to the user's window."""
+
+
+def edge_tension(pressure: np.ndarray, peak_stress: float) -> bool:
+    """Whether a non-periodic adhesive state's edge carries tension above :data:`EDGE_TENSION` of ``peak_stress``."""
+    edges = [np.take(pressure, i, axis=a) for a in range(pressure.ndim) for i in (0, -1)]
+    return any(np.any(e < -EDGE_TENSION * peak_stress) for e in edges)
+
+
 def touches_edge(pressure: np.ndarray) -> bool:
     """Whether a non-periodic footprint reaches the window's edge: compression there above
     :data:`EDGE_RTOL` times the largest ``|pressure|`` (the adhesive tension included) [dimensionless test]."""

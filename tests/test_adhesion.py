@@ -344,6 +344,7 @@ def test_dataset_labels_and_resolution_warning():
     ({"work": 1.0, "range": -1.0}, "range"),
     ({"work": 1.0}, "range"),
     ({"work": 1.0, "range": 1.0, "model": "lennard-jones"}, "model"),
+    ({"work": 0.0, "range": 1.0}, "work .* must be > 0 for model='maugis'"),  # was a ZeroDivisionError at zero load
 ])
 def test_bad_adhesion_named(kwargs, word):
     with pytest.raises(ValueError, match=word):
@@ -553,3 +554,15 @@ def test_adhesion_curve_flags_failed_steps_and_withholds_its_scalars():
     assert np.all(fine.residual.values <= 1e-6) and fine.residual.attrs["units"] == "1"
     with pytest.raises(ValueError, match="adhesion must be a contactlib.Adhesion"):
         contactlib.adhesion_curve(cyl, E=1.0, nu=0.3, adhesion=None, penetrations=[0, 0.004])
+
+
+def test_non_periodic_window_cutting_the_cohesive_zone_is_refused():
+    """A non-periodic window whose edge lies inside the cohesive zone (the Maugis stress at its peak there) cuts off
+    the adhesion beyond it: refused like compression on the edge, naming the window; a wider window passes."""
+    law = Adhesion(work=1e-4, range=2e-3)
+    with pytest.raises(ValueError, match="adhesive zone reaches the edge of the window"):
+        contactlib.solve(contactlib.surfaces.paraboloid(32, radius=1.0, length=0.5), E=1.0, nu=0.3, penetration=0.05,
+                         periodic=False, adhesion=law)
+    wide = contactlib.solve(contactlib.surfaces.paraboloid(128, radius=1.0, length=2.0), E=1.0, nu=0.3,
+                            penetration=0.05, periodic=False, adhesion=law)
+    assert wide.attrs["converged"] == 1 and float(wide.contact_area) > 0
