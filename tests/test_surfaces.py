@@ -131,3 +131,34 @@ def test_generated_surfaces_carry_their_provenance():
     curve = contactlib.adhesion_curve(made[1], E=1.0, nu=0.0, adhesion=contactlib.Adhesion(work=1e-4, model="jkr"),
                                       mean_pressures=[0.0, 0.01])
     assert curve.attrs["contactlib_version"] == contactlib.__version__
+
+
+@pytest.mark.parametrize("make, match", [
+    (lambda: contactlib.surfaces.spheres(32, radius=0.5, lattice=2, summit_height=float("nan")), "summit_height"),
+    (lambda: contactlib.surfaces.spheres(32, radius=0.5, lattice=2, summit_height=-0.1), "no asperity rises"),
+    (lambda: contactlib.surfaces.spheres(32, radius=0.1, lattice=2, summit_height=0.4), "must not exceed radius"),
+    (lambda: contactlib.surfaces.spheres(32, radius=float("nan"), lattice=2, summit_height=0.01), "radius"),
+    (lambda: contactlib.surfaces.spheres(32, radius=0.5, lattice=0, summit_height=0.01), "lattice"),
+    (lambda: contactlib.surfaces.spheres(32, radius=0.5, count=2.5, summit_height=0.01), "count"),
+    (lambda: contactlib.surfaces.spheres(32, radius=0.5, centers=[[0.1, 0.2, 0.3]], summit_height=0.01), "centers"),
+    (lambda: contactlib.surfaces.spheres(32, radius=[0.5, 0.4, 0.3], lattice=2, summit_height=0.01), "radius"),
+    (lambda: contactlib.surfaces.spheres(32, radius=0.5, lattice=2, summit_height=0.01, height_std=-1.0),
+     "height_std"),
+    (lambda: contactlib.surfaces.wavy(32, amplitude=0.01, wavelengths=1.5), "wavelengths"),
+    (lambda: contactlib.surfaces.wavy(32, amplitude=0.01, wavelengths=0), "wavelengths"),
+    (lambda: contactlib.surfaces.wavy(32, amplitude=0.01, wavelengths=40), "wavelengths"),
+    (lambda: contactlib.surfaces.self_affine(32, hurst=0.8, q_roll=2, q_cutoff=8, rms_slope=0.1, anisotropy=0.5,
+                                             angle=float("nan")), "angle"),
+    (lambda: contactlib.two_scale.random_asperity_field(9, coverage=0.2, nodes_per_spacing=8,
+                                                        height_scatter=float("nan")), "height_scatter"),
+    (lambda: contactlib.two_scale.random_asperity_field(9, coverage=0.2, nodes_per_spacing=8, height_scatter=-0.5),
+     "height_scatter"),
+    (lambda: contactlib.two_scale.random_asperity_field(2.7, coverage=0.2, nodes_per_spacing=8), "count"),
+    (lambda: contactlib.two_scale.random_asperity_field(9, coverage=0.2, nodes_per_spacing=8, n=40.5), "n must be"),
+    (lambda: contactlib.two_scale.random_asperity_field(9, coverage=0.2, nodes_per_spacing=-3), "nodes_per_spacing"),
+])
+def test_bad_surface_parameters_are_named(make, match):
+    """Each of these returned a flat, a cliffed, an aliased or a truncated surface, or failed with a ZeroDivisionError
+    or a numpy error; now a ValueError names the parameter."""
+    with pytest.raises(ValueError, match=match):
+        make()

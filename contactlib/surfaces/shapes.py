@@ -21,8 +21,10 @@ def _as_dataarray(values, grid: Grid, length_unit: str, **attrs) -> xr.DataArray
 def _grid(n, length, dim) -> Grid:
     if dim not in (1, 2):
         raise ValueError(f"dim must be 1 or 2, got {dim!r}")
-    if int(n) != n or n < 2:
+    if isinstance(n, bool) or not np.isfinite(n) or int(n) != n or n < 2:
         raise ValueError(f"n must be an integer >= 2, got {n!r}")
+    if not (np.isfinite(length) and length > 0):
+        raise ValueError(f"length must be finite and > 0, got {length!r}")
     return Grid((int(n),) * dim, (float(length),) * dim)
 
 
@@ -30,9 +32,13 @@ def wavy(n: int, *, length: float = 1.0, amplitude: float, wavelengths: int = 1,
          length_unit: str = "m") -> xr.DataArray:
     """``amplitude cos(q x)`` (1D) or the egg-box ``amplitude cos(q x) cos(q y)`` (2D), with
     ``q = 2 pi wavelengths / length``; a crest sits at the origin."""
-    if not amplitude > 0:
-        raise ValueError(f"amplitude must be > 0, got {amplitude!r}")
+    if not (np.isfinite(amplitude) and amplitude > 0):
+        raise ValueError(f"amplitude must be finite and > 0, got {amplitude!r}")
     grid = _grid(n, length, dim)
+    # a whole number of waves, resolved: the window stays periodic and the wave is not aliased
+    if isinstance(wavelengths, bool) or not np.isfinite(wavelengths) or int(wavelengths) != wavelengths \
+            or not 1 <= wavelengths <= int(n) // 2:
+        raise ValueError(f"wavelengths must be a whole number in [1, n/2 = {int(n) // 2}], got {wavelengths!r}")
     q = 2 * np.pi * wavelengths / length
     xs = grid.coordinates()
     h = amplitude * np.cos(q * xs[0])
@@ -73,6 +79,15 @@ def spheres(n: int, *, length: float = 1.0, radius, summit_height=0.0, centers=N
     rng = np.random.default_rng(seed)
     if sum(v is not None for v in (centers, count, lattice)) != 1:
         raise ValueError("give exactly one of centers, count or lattice")
+    for name, value in (("lattice", lattice), ("count", count)):
+        if value is not None and (isinstance(value, bool) or not np.isfinite(value) or int(value) != value
+                                  or value < 1):
+            raise ValueError(f"{name} must be a whole number >= 1, got {value!r}")
+    for name, value in (("summit_height", summit_height), ("height_std", height_std)):
+        if not np.all(np.isfinite(np.asarray(value, dtype=float))):
+            raise ValueError(f"{name} must be finite, got {value!r}")
+    if height_std < 0:
+        raise ValueError(f"height_std must be >= 0, got {height_std!r}")
     if lattice is not None:
         pos = (np.arange(lattice) + 0.5) * length / lattice
         mesh = np.meshgrid(*([pos] * dim), indexing="ij")
@@ -80,11 +95,23 @@ def spheres(n: int, *, length: float = 1.0, radius, summit_height=0.0, centers=N
     elif count is not None:
         centers = rng.uniform(0, length, size=(int(count), dim))
     centers = np.atleast_2d(np.asarray(centers, dtype=float))
+    if centers.ndim != 2 or centers.shape[1] != dim or not np.all(np.isfinite(centers)):
+        raise ValueError(f"centers must be finite, one row of {dim} coordinate(s) per asperity, got shape "
+                         f"{centers.shape}")
     k = centers.shape[0]
-    radii = np.broadcast_to(np.asarray(radius, dtype=float), (k,))
-    if np.any(radii <= 0):
-        raise ValueError("radius must be > 0")
+    try:
+        radii = np.broadcast_to(np.asarray(radius, dtype=float), (k,))
+    except ValueError:
+        raise ValueError(f"radius must be one value or one per asperity ({k}), got {np.shape(radius)}") from None
+    if not np.all(np.isfinite(radii) & (radii > 0)):
+        raise ValueError("radius must be finite and > 0")
     tops = summit_height + height_std * rng.standard_normal(k)
+    if not np.any(tops > 0):
+        raise ValueError(f"summit_height: no asperity rises above the base (summits {np.max(tops):.4g} at the "
+                         "highest); the surface would be flat")
+    if np.any(tops > radii):
+        raise ValueError("summit_height must not exceed radius: a cap higher than its sphere's radius is more than "
+                         "a hemisphere (a cliff on the grid)")
     xs = grid.coordinates()
     h = np.zeros(grid.shape)
     for c, R, z in zip(centers, radii, tops):

@@ -80,6 +80,10 @@ def self_affine(
         raise ValueError(f"anisotropy must lie in (0, 1], got {anisotropy!r}")
     if synthesis not in ("filtered-noise", "random-phase"):
         raise ValueError(f"synthesis must be 'filtered-noise' or 'random-phase', got {synthesis!r}")
+    if not math.isfinite(angle):
+        raise ValueError(f"angle must be a finite angle [rad], got {angle!r}")
+    if not (math.isfinite(length) and length > 0):
+        raise ValueError(f"length must be finite and > 0, got {length!r}")
     if dim == 1 and (anisotropy != 1 or angle != 0):
         raise ValueError("anisotropy and angle need dim=2")
 
