@@ -102,3 +102,23 @@ def test_non_convergence_raises_with_residual_and_partial_dataset(heights):
     assert int(err.dataset.iterations) == 3
     assert float(err.dataset.residual) == pytest.approx(err.residual)
     assert "residual" in str(err)
+
+
+@pytest.mark.parametrize("call, match", [
+    (lambda h: contactlib.analysis.contact_area_fraction(np.full((8, 8), np.nan)), "pressure must be"),
+    (lambda h: contactlib.analysis.contact_clusters(np.ones((8, 8)), element_area=-1.0), "element_area"),
+    (lambda h: contactlib.analysis.anisotropy_tensor(h.values, 0.1, 0.5), "holds no wavevector"),
+    (lambda h: contactlib.analysis.anisotropy_tensor(h.values, 1.0, 4.0, n_theta=0), "n_theta"),
+    (lambda h: contactlib.analysis.fit_hurst(h.values, q_min=8, q_max=2), "q_min < q_max"),
+    (lambda h: contactlib.analysis.psd(h.values, bins=-1), "bins"),
+    (lambda h: contactlib.analysis.rms_slope(np.full((8, 8), np.nan)), "NaN"),
+    (lambda h: contactlib.analysis.directional_slope(h.values, lengths=-1.0), "lengths"),
+    (lambda h: contactlib.analysis.dissipated_power(h.values, material=1.0, sliding_velocity=(1.0, 0.0)), "material"),
+    (lambda h: contactlib.analysis.dissipated_power(h.values, material=contactlib.Elastic(1.0, 0.3),
+                                                    sliding_velocity=(1.0, 0.0, 0.0)), "sliding_velocity"),
+])
+def test_bad_analysis_input_names_the_parameter(heights, call, match):
+    """NaN pressures counted as out of contact (area 0), a band with no modes gave a plausible theta_d, negative
+    lengths flipped a slope's sign; others failed with numpy's errors. Each now names the parameter."""
+    with pytest.raises(ValueError, match=match):
+        call(heights)

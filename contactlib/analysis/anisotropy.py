@@ -29,12 +29,17 @@ def anisotropy_tensor(field, zeta1: float, zeta2: float, *, length=None, n_theta
     values, grid = _values_and_grid(field, length)
     if grid.dim != 2:
         raise ValueError("anisotropy_tensor needs a 2D field")
-    if not (0 <= zeta1 < zeta2):
-        raise ValueError(f"need 0 <= zeta1 < zeta2, got {zeta1}, {zeta2}")
+    if not (np.isfinite(zeta2) and 0 <= zeta1 < zeta2):
+        raise ValueError(f"need 0 <= zeta1 < zeta2, finite, got {zeta1}, {zeta2}")
+    if isinstance(n_theta, bool) or int(n_theta) != n_theta or n_theta < 2:
+        raise ValueError(f"n_theta must be a whole number >= 2, got {n_theta!r}")
     q0 = 2 * np.pi / grid.lengths[0]
     qx, qy = grid.wavevectors()
     q = np.hypot(qx, qy)
     band = (q > zeta1 * q0) & (q < zeta2 * q0)
+    if not band.any():  # no mode: M = 0, gamma NaN and a theta_d read off a zero matrix
+        raise ValueError(f"zeta1, zeta2: the band ({zeta1}, {zeta2}) q0 holds no wavevector of the grid (its modes "
+                         f"lie on multiples of q0 up to {float(q.max() / q0):.4g} q0)")
     power = np.abs(np.fft.rfftn(values)) ** 2 * band
     power *= _half_spectrum_weights(grid) / grid.size**2
     qx_b = np.broadcast_to(qx, q.shape)

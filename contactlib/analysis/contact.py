@@ -6,9 +6,16 @@ import numpy as np
 from scipy import ndimage
 
 
+def _pressure(pressure) -> np.ndarray:
+    p = np.asarray(pressure, dtype=float)
+    if p.size == 0 or not np.all(np.isfinite(p)):
+        raise ValueError("pressure must be a non-empty field of finite values (NaN would count as out of contact)")
+    return p
+
+
 def contact_area_fraction(pressure) -> float:
     """Fraction of elements carrying positive pressure [1]."""
-    p = np.asarray(pressure)
+    p = _pressure(pressure)
     return float(np.count_nonzero(p > 0)) / p.size
 
 
@@ -22,7 +29,9 @@ def contact_clusters(pressure, *, periodic: bool = True, element_area: float = 1
     areas : ndarray of float
         Area of each cluster (element count times ``element_area``).
     """
-    mask = np.asarray(pressure) > 0
+    if not (np.isfinite(element_area) and element_area > 0):
+        raise ValueError(f"element_area must be finite and > 0, got {element_area!r}")
+    mask = _pressure(pressure) > 0
     labels, n = ndimage.label(mask)
     if periodic and n > 1:
         parent = np.arange(n + 1)

@@ -12,7 +12,10 @@ def directional_slope(field: np.ndarray, *, lengths, direction: float = 0.0, per
     """``d field / ds`` along ``s = (cos direction, sin direction)`` (1D: ``d/dx``) [field/length]:
     spectral for a periodic field, second-order central differences otherwise (exact on parabolas)."""
     field = np.asarray(field, dtype=float)
-    spacing = [length / n for n, length in zip(field.shape, np.broadcast_to(lengths, (field.ndim,)))]
+    window = np.broadcast_to(np.asarray(lengths, dtype=float), (field.ndim,))
+    if not np.all(np.isfinite(window) & (window > 0)):
+        raise ValueError(f"lengths must be finite and > 0, got {lengths!r}")
+    spacing = [length / n for n, length in zip(field.shape, window)]
     if periodic:
         spectrum = np.fft.rfftn(field)
         axes = []

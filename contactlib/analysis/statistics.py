@@ -14,16 +14,29 @@ from ..labels import attrs_for
 
 
 def _values_and_grid(field, length=None) -> tuple[np.ndarray, Grid]:
+    """The field's values and grid, refused unless 1D or 2D, at least 2 points a side, finite, on a window of
+    finite positive lengths."""
     if isinstance(field, xr.DataArray):
         values = np.asarray(field.values, dtype=float)
-        if length is None:
+        if length is None and values.ndim in (1, 2) and min(values.shape, default=0) >= 2:
             length = tuple(float(field[d][1] - field[d][0]) * field.sizes[d] for d in field.dims)
     else:
         values = np.asarray(field, dtype=float)
         if length is None:
             length = 1.0
-    lengths = tuple(np.broadcast_to(np.asarray(length, dtype=float), (values.ndim,)))
+    check_field(values, "field")
+    lengths = tuple(float(v) for v in np.broadcast_to(np.asarray(length, dtype=float), (values.ndim,)))
+    if not all(np.isfinite(v) and v > 0 for v in lengths):
+        raise ValueError(f"length must be finite and > 0, got {length!r}")
     return values, Grid(values.shape, lengths)
+
+
+def check_field(values: np.ndarray, name: str) -> None:
+    """Refuse a field an analysis cannot read: not 1D or 2D, fewer than 2 points a side, NaN or infinite values."""
+    if values.ndim not in (1, 2) or min(values.shape, default=0) < 2:
+        raise ValueError(f"{name} must be 1D or 2D with at least 2 points a side, got shape {values.shape}")
+    if not np.all(np.isfinite(values)):
+        raise ValueError(f"{name} contains NaN or infinite values")
 
 
 def _half_spectrum_weights(grid: Grid) -> np.ndarray:
@@ -65,6 +78,8 @@ def psd(field, *, length=None, bins: int | None = None) -> xr.DataArray:
 
     Bins are one ``q0 = 2 pi / L`` wide (or ``bins`` log-spaced bins) up to Nyquist.
     """
+    if bins is not None and (isinstance(bins, bool) or int(bins) != bins or bins < 1):
+        raise ValueError(f"bins must be None or a whole number >= 1, got {bins!r}")
     values, grid = _values_and_grid(field, length)
     spec = np.abs(np.fft.rfftn(values - values.mean())) ** 2
     c = spec * grid.element_area**2 / ((2 * np.pi) ** grid.dim * float(np.prod(grid.lengths)))
@@ -88,9 +103,14 @@ def psd(field, *, length=None, bins: int | None = None) -> xr.DataArray:
 def fit_hurst(field, *, q_min: float, q_max: float, length=None) -> float:
     """Hurst exponent from a least-squares fit of ``log C`` against ``log q`` on ``[q_min, q_max]``
     (multiples of ``q0``): slope ``-(dim + 2H)``."""
+    if not (np.isfinite(q_min) and np.isfinite(q_max) and 0 < q_min < q_max):
+        raise ValueError(f"need 0 < q_min < q_max (multiples of q0), got q_min={q_min!r}, q_max={q_max!r}")
     values, grid = _values_and_grid(field, length)
     c = psd(values, length=grid.lengths)
     q0 = 2 * np.pi / grid.lengths[0]
     sel = (c.wavenumber >= q_min * q0) & (c.wavenumber <= q_max * q0) & (c > 0)
+    if int(sel.sum()) < 2:
+        raise ValueError(f"q_min, q_max: the band [{q_min}, {q_max}] q0 holds {int(sel.sum())} spectrum bin(s) with "
+                         "power, 2 at least are needed for a fit")
     slope = np.polyfit(np.log(c.wavenumber[sel]), np.log(c[sel]), 1)[0]
     return float(-(slope + grid.dim) / 2)

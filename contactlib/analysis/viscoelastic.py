@@ -50,8 +50,12 @@ def dissipated_power(displacement, *, material, sliding_velocity, length=None, l
     layer : contactlib.Layer, optional
         The layer the displacement is on (its normal compliance replaces the half-space's).
     """
+    if not (hasattr(material, "complex_modulus") and hasattr(material, "nu")):
+        raise ValueError(f"material must be a contactlib.Viscoelastic or contactlib.Elastic, got {material!r}")
     values, grid = _values_and_grid(displacement, length)
-    velocity = np.broadcast_to(np.asarray(sliding_velocity, dtype=float), (grid.dim,))
+    velocity = np.asarray(sliding_velocity, dtype=float).ravel()
+    if velocity.shape != (grid.dim,) or not np.all(np.isfinite(velocity)):
+        raise ValueError(f"sliding_velocity must be {grid.dim} finite component(s), got {sliding_velocity!r}")
     along = _along(grid, velocity)
     unit = surface_green_tensor(grid, 1.0, material.nu, *((layer.thickness, layer.base) if layer else ()))
     nonzero = grid.wavenumber() > 0
