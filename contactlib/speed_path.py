@@ -52,7 +52,11 @@ def predict_pressure(speeds: Sequence[float], pressures: Sequence[np.ndarray], s
     two answers in ``log(speed)``."""
     if not pressures:
         return None
+    if len(speeds) < len(pressures):
+        raise ValueError(f"speeds: one per answer in pressures, got {len(speeds)} speeds for {len(pressures)} answers")
     last = np.asarray(pressures[-1], dtype=float)
+    if not all(np.all(np.isfinite(p)) for p in pressures[-3:]):
+        raise ValueError("pressures: the answers to extrapolate contain NaN or infinite values")
     if len(pressures) < 2 or speeds[-1] == speeds[-2]:
         return last.copy()
     for value, name in [*((v, "speeds") for v in speeds[-3:]), (speed, "speed")]:

@@ -57,3 +57,12 @@ def test_bad_path_arguments():
         contactlib.solve_speeds(h, [0.0], material=SLS, mean_pressure=0.1)
     with pytest.raises(ValueError, match="initial_pressure"):
         contactlib.solve_speeds(h, [1.0], material=SLS, mean_pressure=0.1, initial_pressure=np.ones(32))
+
+
+def test_prediction_refuses_mismatched_or_non_finite_answers():
+    """Fewer speeds than answers raised an IndexError; NaN answers gave a NaN start. Both named now."""
+    p = np.ones((4, 4))
+    with pytest.raises(ValueError, match="speeds: one per answer"):
+        contactlib.predict_pressure([1.0], [p, p, p], 8.0)
+    with pytest.raises(ValueError, match="pressures: the answers"):
+        contactlib.predict_pressure([1.0, 2.0], [p, np.full((4, 4), np.nan)], 4.0)

@@ -879,3 +879,16 @@ def test_study_grid_is_a_fast_size_never_coarser():
     b = ts.asperity_table(ts.random_asperity_field(50, coverage=0.2, nodes_per_spacing=8, seed=0, n=63))
     assert b.grid.shape == (63, 63) and np.array_equal(a.centers, b.centers)
     np.testing.assert_array_equal(a.summit_height, b.summit_height)
+
+
+def test_heights_edited_after_the_table_are_refused():
+    """The macro scale reads the asperity table, the micro scale the heights: a spheres DataArray whose heights were
+    scaled afterwards was solved silently as two different surfaces. Heights above the highest summit are refused."""
+    h = contactlib.surfaces.spheres(64, radius=0.5, lattice=4, summit_height=0.01, height_std=0.001)
+    edited = h.copy()
+    edited.values[:] *= 2
+    with pytest.raises(ValueError, match="heights were changed after the table was made"):
+        contactlib.two_scale.solve(edited, E=1.0, nu=0.5, mean_pressure=1e-4)
+    with pytest.raises(ValueError, match="n must be a whole number"):
+        contactlib.two_scale.solve(h, E=1.0, nu=0.5, mean_pressure=1e-4, n=64.7)
+    assert contactlib.two_scale.solve(h, E=1.0, nu=0.5, mean_pressure=1e-4).attrs["converged"] == 1

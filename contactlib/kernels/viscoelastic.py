@@ -79,9 +79,13 @@ def _modulus_pass(omega, E0, moduli, taus, references, factor):
         im = 0.0
         for k in range(moduli.size):
             x = omega[i] * taus[k]
-            d = moduli[k] / (1.0 + x * x)
-            re += d * x * x
-            im += d * x
+            if abs(x) <= 1.0:
+                d = moduli[k] / (1.0 + x * x)
+                re += d * x * x
+                im += d * x
+            else:  # in 1/x: x * x overflowed past omega tau 1e154, and 0 * inf made the modulus NaN
+                re += moduli[k] / (1.0 + 1.0 / (x * x))
+                im += moduli[k] / (x + 1.0 / x)
         norm = re * re + im * im
         factor[i] = complex(E0 * re / norm, -E0 * im / norm)
         if i > 0:

@@ -18,6 +18,7 @@ import xarray as xr
 from .. import surfaces
 from .._version import __version__
 from ..contact import ConvergenceError
+from ..inputs import check_iterations
 from ..labels import attrs_for, dataset
 from ..materials import contact_modulus
 from ..operators import Compliance
@@ -228,8 +229,9 @@ def solve(
                                                                     else ()):
         if not (isinstance(value, numbers.Real) and math.isfinite(value) and value > 0):
             raise ValueError(f"{name} must be finite and > 0, got {value!r}")
-    if int(max_iter) < 1:
-        raise ValueError(f"max_iter must be >= 1, got {max_iter!r}")
+    check_iterations(max_iter)
+    if n is not None and (isinstance(n, bool) or not np.isfinite(n) or int(n) != n):
+        raise ValueError(f"n must be a whole number of grid points per side, got {n!r}")
     if law is not None:
         if not isinstance(law, TabulatedLaw):
             raise ValueError(f"law must be None (Hertz) or a contactlib.two_scale.tabulated_law(...), got {law!r}")

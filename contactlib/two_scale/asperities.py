@@ -207,6 +207,11 @@ def asperity_table(asperities, *, length: float | None = None, periodic: bool | 
         if not (np.isfinite(footprint_radius) and footprint_radius > 0):
             raise ValueError(f"footprint_radius must be finite and > 0, got {footprint_radius!r}")
         footprint = np.full(n, float(footprint_radius))
+    if highest is not None and highest > float(summit.max()) * (1 + 1e-9):
+        # the macro scale reads the table, the micro scale the heights: edited heights would be two surfaces
+        raise ValueError(f"asperities: the heights rise to {highest:.6g}, above the table's highest summit "
+                         f"{float(summit.max()):.6g}: the heights were changed after the table was made (make a new "
+                         "field)")
     table = AsperityTable(centers, radius, summit, window, bool(periodic), heights, grid, footprint, highest)
     check_separate(table)
     return table

@@ -169,6 +169,8 @@ def tabulated_law(drop: Callable[[np.ndarray], np.ndarray], *, footprint_radius:
     if material is not None:
         if E is not None or nu is not None:
             raise ValueError("material: give material=... or E= and nu=, not both")
+        if not (hasattr(material, "E") and hasattr(material, "nu")):
+            raise ValueError(f"material: a tabulated law is elastic, give contactlib.Elastic(E, nu), got {material!r}")
         E, nu = material.E, material.nu
     if E is None or nu is None:
         raise ValueError("material: give material=contactlib.Elastic(E, nu) or both E= and nu=")
@@ -178,8 +180,9 @@ def tabulated_law(drop: Callable[[np.ndarray], np.ndarray], *, footprint_radius:
                         ("smallest", smallest)):
         if not (math.isfinite(value) and value > 0):
             raise ValueError(f"{name} must be finite and > 0, got {value!r}")
-    if int(points) < 3 or int(nodes) < 16 or not smallest < 1:
-        raise ValueError(f"points >= 3, nodes >= 16 and smallest < 1, got {points!r}, {nodes!r}, {smallest!r}")
+    if int(points) != points or int(nodes) != nodes or int(points) < 3 or int(nodes) < 16 or not smallest < 1:
+        raise ValueError(f"points >= 3 and nodes >= 16 (whole numbers) and smallest < 1, got {points!r}, {nodes!r}, "
+                         f"{smallest!r}")
     if float(drop(footprint_radius)) <= max_penetration:
         raise ValueError(f"max_penetration {max_penetration!r} reaches the base: drop(footprint_radius) = "
                          f"{float(drop(footprint_radius))!r}")
