@@ -104,6 +104,11 @@ def solve_speeds(heights, sliding_velocities, *, recycle: bool = False, **kwargs
         raise ValueError("initial_pressure: solve_speeds predicts each speed's start itself; give none")
     if "sliding_velocity" in kwargs:
         raise ValueError("sliding_velocity: give the path as sliding_velocities")
+    if isinstance(sliding_velocities, (str, bytes)) or not hasattr(sliding_velocities, "__iter__"):
+        raise ValueError(f"sliding_velocities must be a sequence of velocities, got {sliding_velocities!r}")
+    sliding_velocities = list(sliding_velocities)
+    if not sliding_velocities:
+        raise ValueError("sliding_velocities is empty: give at least one velocity")
     speeds, pressures, out = [], [], []
     with recycling() if recycle else contextlib.nullcontext(), reusing_slopes(), reusing_kernels():
         for velocity in sliding_velocities:

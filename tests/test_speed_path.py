@@ -66,3 +66,15 @@ def test_prediction_refuses_mismatched_or_non_finite_answers():
         contactlib.predict_pressure([1.0], [p, p, p], 8.0)
     with pytest.raises(ValueError, match="pressures: the answers"):
         contactlib.predict_pressure([1.0, 2.0], [p, np.full((4, 4), np.nan)], 4.0)
+
+
+@pytest.mark.parametrize("velocities, match", [(1.0, "must be a sequence"), ("ab", "must be a sequence"),
+                                               ([], "is empty")])
+def test_speed_path_refuses_what_is_not_a_path(velocities, match):
+    """A bare number or a string failed deep in numpy, an empty path returned []: named now."""
+    h = contactlib.surfaces.self_affine(16, hurst=0.8, q_roll=1, q_cutoff=4, rms_slope=0.1, seed=1)
+    sls = contactlib.Viscoelastic.standard_linear_solid(E0=1.0, E_inf=10.0, tau=1.0, nu=0.5)
+    with pytest.raises(ValueError, match=match):
+        contactlib.solve_speeds(h, velocities, material=sls, mean_pressure=0.02)
+    with pytest.raises(ValueError, match="heights must be a DataArray"):
+        contactlib.surfaces.resample(h.values, 32)

@@ -34,7 +34,10 @@ def resample(heights: xr.DataArray, n: int) -> xr.DataArray:
     >>> bool(abs(fine.values[::4, ::4] - h.values).max() < 1e-12 * float(abs(h).max()))
     True
     """
-    if int(n) != n or n < 2:
+    if not isinstance(heights, xr.DataArray):
+        raise ValueError(f"heights must be a DataArray with its coordinates (as the generators give), got "
+                         f"{type(heights).__name__}")
+    if isinstance(n, bool) or not np.isfinite(n) or int(n) != n or n < 2:
         raise ValueError(f"n must be an integer >= 2, got {n!r}")
     n = int(n)
     values = np.asarray(heights.values, dtype=float)
