@@ -131,6 +131,8 @@ def _cohesive_path(setup, adhesion, path, load_control):
                 state = candidate
                 break
             closest = float(np.fmin(closest, candidate.residual))
+        if state is not None:
+            setup.check_window(state.pressure)  # a window that cuts the contact or its cohesive zone: refused
         if state is None:
             rows.append(_failed_row(value, load_control, closest))
             continue
@@ -190,6 +192,7 @@ def _energy_path(setup, adhesion, path, load_control):
             d = float(value)
             m_new = fam.descend(m if m < largest else largest - 1, d, w)
         state = adhesive_contact.energy_state(setup, fam, m_new, d, "")
+        setup.check_window(state.pressure)
         area = float(np.count_nonzero(state.in_contact)) / state.in_contact.size
         before = 0.0 if m < 0 else 1.0 if m >= fam.ends.size else float(fam.ends[m]) / fam.size
         jump = _jumped(area, before, fam.size)

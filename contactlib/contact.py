@@ -364,22 +364,30 @@ class _Setup(NonSymmetricSolve):
                                                                              pressure=pressure_unit))
         return variables
 
-    def check(self, state: ContactState, ds: xr.Dataset) -> None:
-        """Refuse a footprint cut by the window edge; raise :class:`ConvergenceError` if unconverged (first,
-        for an adhesive solve: a diverged cohesive iterate can touch the edge, which would hide why)."""
-        touches = not self.operator.periodic and touches_edge(state.pressure)
-        if touches and (state.converged or self.adhesion is None):
+    def check_window(self, pressure: np.ndarray) -> None:
+        """Refuse a non-periodic state that the window cuts: compression on its edge (the surface outside would carry
+        load too) or, adhesive, its cohesive zone reaching the edge (tension above :data:`EDGE_TENSION` of the law's
+        peak stress there; JKR, with no stress of its own, any tension: its contact edge is there)."""
+        if self.operator.periodic:
+            return
+        jkr = self.adhesion is not None and not self.adhesion.cohesive
+        if touches_edge(pressure) or (jkr and edge_tension(pressure, 0.0)):
             raise ValueError(
                 "periodic=False: the contact reaches the edge of the window, so the surface outside it would "
                 "carry load too; enlarge the window (or use periodic=True for a periodic surface)"
             )
-        if not self.operator.periodic and self.adhesion is not None and state.converged \
-                and edge_tension(state.pressure, self.adhesion.peak_stress):
+        if self.adhesion is not None and not jkr and edge_tension(pressure, self.adhesion.peak_stress):
             raise ValueError(
                 "periodic=False: the adhesive zone reaches the edge of the window (tension above "
                 f"{EDGE_TENSION:g} of the law's peak stress there), so adhesion beyond it is cut off; enlarge the "
                 "window (or use periodic=True for a periodic surface)"
             )
+
+    def check(self, state: ContactState, ds: xr.Dataset) -> None:
+        """Refuse a footprint cut by the window edge; raise :class:`ConvergenceError` if unconverged (first,
+        for an adhesive solve: a diverged cohesive iterate can touch the edge, which would hide why)."""
+        if state.converged or self.adhesion is None:
+            self.check_window(state.pressure)
         if not state.converged:
             tol, max_iter = ds.attrs["tol"], self.solver_args["max_iter"]
             stalled = state.solver.startswith(("polonsky-keer", "coupled")) and state.iterations < max_iter
@@ -441,9 +449,11 @@ def _setup(heights, *, material, mean_pressure, penetration, periodic, tol, max_
     check_friction(layer, friction, sliding_direction, nu, method, kernel, periodic)
     velocity, sliding_direction = check_velocity(sliding_velocity, sliding_direction, grid.dim, material, method,
                                                   periodic)
-    if grid.dim == 1 and abs(math.sin(sliding_direction)) > 1e-12:
-        raise ValueError(f"sliding_direction must be 0 (+x) or pi (-x) for a profile (1D heights), got "
-                         f"{sliding_direction!r}")
+    if grid.dim == 1:
+        if abs(math.sin(sliding_direction)) > 1e-4:  # pi to four decimals (3.1416) passes
+            raise ValueError(f"sliding_direction must be 0 (+x) or pi (-x) for a profile (1D heights), got "
+                             f"{sliding_direction!r}")
+        sliding_direction = 0.0 if math.cos(sliding_direction) > 0 else math.pi  # 3.1416 from a command line: pi
     if adhesion is not None and velocity is not None and any(v != 0 for v in velocity):
         raise ValueError(f"sliding_velocity: adhesion is modelled at rest (a steady sliding adhesive contact is not "
                          f"supported), got sliding_velocity={sliding_velocity!r} with adhesion")

@@ -56,14 +56,21 @@ def _window_of(heights: xr.DataArray) -> tuple[float, ...]:
     finite, increasing and evenly spaced (the FFT grid's)."""
     lengths = []
     for d in heights.dims:
-        c = np.asarray(heights[d].values, dtype=float)
+        raw = np.asarray(heights[d].values)
+        c = raw.astype(float)
         if c.size < 2:
             raise ValueError(f"heights: grid smaller than 2 points along {d!r}")
         steps = np.diff(c)
-        if not (np.all(np.isfinite(steps)) and steps[0] > 0 and np.max(np.abs(steps - steps[0])) <= 1e-6 * steps[0]):
+        # evenly spaced to 1e-6 of a step, or to the coordinates' own rounding (float32 data: 6e-8 of their size)
+        eps = np.finfo(raw.dtype).eps if np.issubdtype(raw.dtype, np.floating) else 0.0
+        slack = max(1e-6 * abs(float(steps[0])), 8 * eps * float(np.max(np.abs(c))))
+        if not (np.all(np.isfinite(steps)) and steps[0] > 0 and np.max(np.abs(steps - steps[0])) <= slack):
             raise ValueError(f"heights: coordinate {d!r} must be finite, increasing and evenly spaced (the FFT "
-                             f"grid's), got steps from {float(np.min(steps)):.6g} to {float(np.max(steps)):.6g}")
-        lengths.append(float(steps[0]) * c.size)
+                             f"grid's): its steps differ from the first by up to "
+                             f"{float(np.max(np.abs(steps - steps[0])) / abs(steps[0])):.3g} of it")
+        # float64 coordinates as before (step times points); rounded ones by their mean step
+        step = float(steps[0]) if eps <= np.finfo(float).eps else float(c[-1] - c[0]) / (c.size - 1)
+        lengths.append(step * c.size)
     return tuple(lengths)
 
 
@@ -105,7 +112,8 @@ def check_loads(mean_pressure, penetration) -> None:
     if (mean_pressure is None) == (penetration is None):
         raise ValueError("give exactly one of mean_pressure or penetration")
     for name, value in (("mean_pressure", mean_pressure), ("penetration", penetration)):
-        if value is not None and (isinstance(value, bool) or not isinstance(value, numbers.Real)):
+        if value is not None and (isinstance(value, bool) or np.ndim(value) != 0 or not np.isrealobj(value)
+                                  or not isinstance(np.asarray(value).item(), numbers.Real)):
             raise ValueError(f"{name} must be a number, got {value!r}")
     if mean_pressure is not None and (not math.isfinite(mean_pressure) or mean_pressure < 0):
         raise ValueError(f"mean_pressure must be finite and >= 0, got {mean_pressure!r}")

@@ -86,7 +86,7 @@ def solve_reciprocating(
                          f"max_cycles={max_cycles!r}")
     check_tolerance(cycle_tol, "cycle_tol")
     check_tolerance(tol, "tol")
-    if tol > 0.1 * cycle_tol:  # the steps' own error then holds the cycle-to-cycle change above cycle_tol
+    if tol > cycle_tol / 10 * (1 + 1e-9):  # the steps' own error then holds the cycle change above cycle_tol
         raise ValueError(f"tol {tol!r} must be at most a tenth of cycle_tol {cycle_tol!r}: the change between cycles "
                          "cannot settle below the error of the steps' solves (a rough profile at tol 1e-3 and 3e-4 "
                          "against cycle_tol 1e-3 did not settle in 40 cycles; 1e-4 settled in 6)")

@@ -115,7 +115,7 @@ def solve_speeds(heights, sliding_velocities, *, recycle: bool = False, **kwargs
             speed = float(np.linalg.norm(np.atleast_1d(np.asarray(velocity, dtype=float))))
             if not (np.isfinite(speed) and speed > 0):
                 raise ValueError(f"sliding_velocities: each velocity must be finite and nonzero, got {velocity!r}")
-            start = predict_pressure(speeds, pressures, speed)
+            start = predict_pressure(speeds, pressures, speed) if kwargs.get("method", "cg") == "cg" else None
             ds = solve(heights, sliding_velocity=velocity, initial_pressure=start, **kwargs)
             speeds.append(speed)
             pressures.append(ds.pressure.values)

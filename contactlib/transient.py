@@ -30,7 +30,7 @@ from .analysis.friction import directional_slope
 from .bodies import Layer, body_model
 from .contact import ConvergenceError, constrained_solve
 from .hereditary import PronyHistory
-from .inputs import check_friction, check_tolerance, grid_of, periodic_of, touches_edge
+from .inputs import check_friction, check_iterations, check_tolerance, grid_of, periodic_of, touches_edge
 from .labels import attrs_for
 from .materials import Elastic, material_of
 
@@ -354,8 +354,7 @@ def _prepare(heights, *, times, material, mean_pressure, penetration, path, laye
     values, grid, dims, _ = grid_of(heights, length)
     periodic = periodic_of(heights, periodic)
     check_tolerance(tol, "tol")
-    if isinstance(max_iter, bool) or not isinstance(max_iter, (int, np.integer)) or max_iter < 1:
-        raise ValueError(f"max_iter must be an integer >= 1, got {max_iter!r}")
+    check_iterations(max_iter)
     check_friction(layer, 0.0, 0.0, material.nu, "cg", "spectral", periodic)
     times = _times(times)
     if (mean_pressure is None) == (penetration is None):

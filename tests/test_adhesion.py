@@ -566,3 +566,13 @@ def test_non_periodic_window_cutting_the_cohesive_zone_is_refused():
     wide = contactlib.solve(contactlib.surfaces.paraboloid(256, radius=1.0, length=2.0), E=1.0, nu=0.3,
                             penetration=0.05, periodic=False, adhesion=law)
     assert wide.attrs["converged"] == 1 and float(wide.contact_area) > 0
+
+
+def test_adhesion_curve_refuses_the_window_solve_refuses():
+    """The edge refusals lived in solve's check only: adhesion_curve returned converged paths on a window whose edge
+    lies in the cohesive zone, or where the contact reaches it (94 % contact)."""
+    h = contactlib.surfaces.paraboloid(64, radius=1.0, length=0.5)
+    law = Adhesion(work=1e-4, range=2e-3)
+    for end in (0.05, 0.08):
+        with pytest.raises(ValueError, match="reaches the edge of the window"):
+            contactlib.adhesion_curve(h, E=1.0, nu=0.3, adhesion=law, penetrations=[0.0, end], periodic=False)

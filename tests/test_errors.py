@@ -122,3 +122,28 @@ def test_bad_analysis_input_names_the_parameter(heights, call, match):
     lengths flipped a slope's sign; others failed with numpy's errors. Each now names the parameter."""
     with pytest.raises(ValueError, match=match):
         call(heights)
+
+
+def test_review_of_the_checks(heights):
+    """What a review of the new checks found: float32 coordinates (rounded to 6e-8 of their size) are a grid; a 0-d
+    array is a number; a 1D direction typed as 3.1416 is pi; the two-scale tolerances are relative (in (0, 1)); an
+    infinite count is a ValueError, not an OverflowError."""
+    h32 = heights.assign_coords(x=heights.x.values.astype(np.float32), y=heights.y.values.astype(np.float32))
+    a = contactlib.solve(h32, E=1.0, nu=0.3, mean_pressure=0.01)
+    b = contactlib.solve(heights, E=1.0, nu=0.3, mean_pressure=np.array(0.01))
+    assert float(a.contact_area) == float(b.contact_area)
+    x = np.arange(64) / 64
+    profile = 0.01 * np.cos(2 * np.pi * x) + 0.002 * np.sin(6 * np.pi * x)
+    typed = contactlib.solve(profile, E=1.0, nu=0.3, mean_pressure=0.01, friction=0.5, sliding_direction=3.1416)
+    exact = contactlib.solve(profile, E=1.0, nu=0.3, mean_pressure=0.01, friction=0.5, sliding_direction=np.pi)
+    assert np.array_equal(typed.pressure.values, exact.pressure.values)
+    field = contactlib.surfaces.spheres(64, radius=0.5, lattice=4, summit_height=0.01, height_std=0.001)
+    with pytest.raises(ValueError, match="tol must be a number in"):
+        contactlib.two_scale.solve(field, E=1.0, nu=0.5, mean_pressure=1e-4, tol=2.0)
+    for call, match in ((lambda: contactlib.analysis.psd(heights, bins=np.inf), "bins"),
+                        (lambda: contactlib.analysis.anisotropy_tensor(heights, 1, 4, n_theta=np.inf), "n_theta"),
+                        (lambda: contactlib.analysis.contact_clusters(np.ones((4, 4)), element_area=None),
+                         "element_area"),
+                        (lambda: contactlib.surfaces.wavy("8", amplitude=0.1), "n must be")):
+        with pytest.raises(ValueError, match=match):
+            call()

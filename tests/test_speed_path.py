@@ -78,3 +78,10 @@ def test_speed_path_refuses_what_is_not_a_path(velocities, match):
         contactlib.solve_speeds(h, velocities, material=sls, mean_pressure=0.02)
     with pytest.raises(ValueError, match="heights must be a DataArray"):
         contactlib.surfaces.resample(h.values, 32)
+
+
+def test_speed_path_with_the_active_set_method_gets_no_warm_start():
+    """method="active-set" takes no initial_pressure: the path's predicted start made its second speed fail."""
+    h = contactlib.surfaces.self_affine(16, hurst=0.8, q_roll=1, q_cutoff=4, rms_slope=0.1, seed=1)
+    out = contactlib.solve_speeds(h, [(1.0, 0.0), (2.0, 0.0)], E=1.0, nu=0.5, mean_pressure=0.02, method="active-set")
+    assert len(out) == 2 and all(o.attrs["converged"] == 1 for o in out)

@@ -323,6 +323,7 @@ def test_bad_transient_input_names_the_parameter(kwargs, match):
     (dict(steps_per_cycle=2), "steps_per_cycle"),
     (dict(direction=0.5), "direction must be 0 or pi for a profile"),
     (dict(tol=1e-3), "tol 0.001 must be at most a tenth of cycle_tol"),
+    (dict(tol=3e-5, cycle_tol=3e-4, direction=0.5), "direction must be 0 or pi"),  # a tenth exactly passes tol
     (dict(tol=1e-5, cycle_tol=5e-5), "at most a tenth of cycle_tol 5e-05"),
 ])
 def test_bad_reciprocating_input_names_the_parameter(kwargs, match):

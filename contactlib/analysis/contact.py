@@ -2,6 +2,9 @@
 
 from __future__ import annotations
 
+import math
+import numbers
+
 import numpy as np
 from scipy import ndimage
 
@@ -29,7 +32,8 @@ def contact_clusters(pressure, *, periodic: bool = True, element_area: float = 1
     areas : ndarray of float
         Area of each cluster (element count times ``element_area``).
     """
-    if not (np.isfinite(element_area) and element_area > 0):
+    if isinstance(element_area, bool) or not isinstance(element_area, numbers.Real) \
+            or not (math.isfinite(element_area) and element_area > 0):
         raise ValueError(f"element_area must be finite and > 0, got {element_area!r}")
     mask = _pressure(pressure) > 0
     labels, n = ndimage.label(mask)

@@ -6,10 +6,14 @@ PSD convention: ``C(q) = (2 pi)^-dim * int <h(0) h(x)> exp(-i q.x) d^dim x``, so
 
 from __future__ import annotations
 
+import math
+import numbers
+
 import numpy as np
 import xarray as xr
 
 from ..grid import Grid
+from ..inputs import _window_of
 from ..labels import attrs_for
 
 
@@ -19,7 +23,7 @@ def _values_and_grid(field, length=None) -> tuple[np.ndarray, Grid]:
     if isinstance(field, xr.DataArray):
         values = np.asarray(field.values, dtype=float)
         if length is None and values.ndim in (1, 2) and min(values.shape, default=0) >= 2:
-            length = tuple(float(field[d][1] - field[d][0]) * field.sizes[d] for d in field.dims)
+            length = _window_of(field)  # evenly spaced coordinates, as solve reads them
     else:
         values = np.asarray(field, dtype=float)
         if length is None:
@@ -78,7 +82,8 @@ def psd(field, *, length=None, bins: int | None = None) -> xr.DataArray:
 
     Bins are one ``q0 = 2 pi / L`` wide (or ``bins`` log-spaced bins) up to Nyquist.
     """
-    if bins is not None and (isinstance(bins, bool) or int(bins) != bins or bins < 1):
+    if bins is not None and (isinstance(bins, bool) or not isinstance(bins, numbers.Real) or not math.isfinite(bins)
+                             or int(bins) != bins or bins < 1):
         raise ValueError(f"bins must be None or a whole number >= 1, got {bins!r}")
     values, grid = _values_and_grid(field, length)
     spec = np.abs(np.fft.rfftn(values - values.mean())) ** 2

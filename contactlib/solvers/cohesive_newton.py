@@ -96,6 +96,7 @@ class CohesiveNewton:
                 it -= 1
                 break
             if it - best_it > STALL or not residual < bound:
+                it -= 1  # no step taken in this pass
                 break
             on = active.astype(float)
             off = 1.0 - on

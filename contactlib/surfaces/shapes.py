@@ -2,6 +2,9 @@
 
 from __future__ import annotations
 
+import math
+import numbers
+
 import numpy as np
 import xarray as xr
 
@@ -21,9 +24,9 @@ def _as_dataarray(values, grid: Grid, length_unit: str, **attrs) -> xr.DataArray
 def _grid(n, length, dim) -> Grid:
     if dim not in (1, 2):
         raise ValueError(f"dim must be 1 or 2, got {dim!r}")
-    if isinstance(n, bool) or not np.isfinite(n) or int(n) != n or n < 2:
+    if isinstance(n, bool) or not isinstance(n, numbers.Real) or not math.isfinite(n) or int(n) != n or n < 2:
         raise ValueError(f"n must be an integer >= 2, got {n!r}")
-    if not (np.isfinite(length) and length > 0):
+    if not (isinstance(length, numbers.Real) and math.isfinite(length) and length > 0):
         raise ValueError(f"length must be finite and > 0, got {length!r}")
     return Grid((int(n),) * dim, (float(length),) * dim)
 
@@ -32,11 +35,12 @@ def wavy(n: int, *, length: float = 1.0, amplitude: float, wavelengths: int = 1,
          length_unit: str = "m") -> xr.DataArray:
     """``amplitude cos(q x)`` (1D) or the egg-box ``amplitude cos(q x) cos(q y)`` (2D), with
     ``q = 2 pi wavelengths / length``; a crest sits at the origin."""
-    if not (np.isfinite(amplitude) and amplitude > 0):
+    if not (isinstance(amplitude, numbers.Real) and math.isfinite(amplitude) and amplitude > 0):
         raise ValueError(f"amplitude must be finite and > 0, got {amplitude!r}")
     grid = _grid(n, length, dim)
     # a whole number of waves, resolved: the window stays periodic and the wave is not aliased
-    if isinstance(wavelengths, bool) or not np.isfinite(wavelengths) or int(wavelengths) != wavelengths \
+    if isinstance(wavelengths, bool) or not isinstance(wavelengths, numbers.Real) or not math.isfinite(wavelengths) \
+            or int(wavelengths) != wavelengths \
             or not 1 <= wavelengths <= int(n) // 2:
         raise ValueError(f"wavelengths must be a whole number in [1, n/2 = {int(n) // 2}], got {wavelengths!r}")
     q = 2 * np.pi * wavelengths / length

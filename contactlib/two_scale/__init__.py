@@ -18,7 +18,7 @@ import xarray as xr
 from .. import surfaces
 from .._version import __version__
 from ..contact import ConvergenceError
-from ..inputs import check_iterations
+from ..inputs import check_iterations, check_tolerance
 from ..labels import attrs_for, dataset
 from ..materials import contact_modulus
 from ..operators import Compliance
@@ -81,6 +81,9 @@ def _material(material, E, nu) -> tuple[float, float]:
 def _table_with_grid(asperities, *, length, periodic, n, scale: str, law=None) -> AsperityTable:
     """The validated table, with the caps built on an ``n x n`` grid when a Dataset feeds the two-scale
     method (or ``n`` is given)."""
+    if n is not None and (isinstance(n, bool) or not isinstance(n, numbers.Real) or not math.isfinite(n)
+                          or int(n) != n):
+        raise ValueError(f"n must be a whole number of grid points per side, got {n!r}")
     table = asperity_table(asperities, length=length, periodic=periodic,
                            footprint_radius=None if law is None else law.footprint_radius)
     if law is not None:
@@ -227,11 +230,8 @@ def solve(
                      else MACRO_TOL)
     for name, value in (("tol", tol), ("macro_tol", macro_tol)) + ((("force_tol", force_tol),) if force_tol is not None
                                                                     else ()):
-        if not (isinstance(value, numbers.Real) and math.isfinite(value) and value > 0):
-            raise ValueError(f"{name} must be finite and > 0, got {value!r}")
+        check_tolerance(value, name)  # relative changes and residuals: in (0, 1)
     check_iterations(max_iter)
-    if n is not None and (isinstance(n, bool) or not np.isfinite(n) or int(n) != n):
-        raise ValueError(f"n must be a whole number of grid points per side, got {n!r}")
     if law is not None:
         if not isinstance(law, TabulatedLaw):
             raise ValueError(f"law must be None (Hertz) or a contactlib.two_scale.tabulated_law(...), got {law!r}")

@@ -17,6 +17,7 @@ Hertz at the default 128 nodes).
 from __future__ import annotations
 
 import math
+import numbers
 from collections.abc import Callable
 
 import numpy as np
@@ -180,7 +181,8 @@ def tabulated_law(drop: Callable[[np.ndarray], np.ndarray], *, footprint_radius:
                         ("smallest", smallest)):
         if not (math.isfinite(value) and value > 0):
             raise ValueError(f"{name} must be finite and > 0, got {value!r}")
-    if int(points) != points or int(nodes) != nodes or int(points) < 3 or int(nodes) < 16 or not smallest < 1:
+    if not all(isinstance(v, numbers.Real) and math.isfinite(v) and int(v) == v for v in (points, nodes)) \
+            or int(points) < 3 or int(nodes) < 16 or not smallest < 1:
         raise ValueError(f"points >= 3 and nodes >= 16 (whole numbers) and smallest < 1, got {points!r}, {nodes!r}, "
                          f"{smallest!r}")
     if float(drop(footprint_radius)) <= max_penetration:

@@ -41,6 +41,7 @@ import xarray as xr
 from .._version import __version__
 from ..contact import ConvergenceError
 from ..hereditary import PronyHistory
+from ..inputs import check_iterations, check_tolerance
 from ..labels import attrs_for
 from ..materials import contact_modulus, material_of
 from ..operators import Compliance
@@ -153,10 +154,8 @@ def solve_transient(
             else MACRO_TOL_TRANSIENT
     for name, value in (("tol", tol), ("macro_tol", macro_tol)) + ((("force_tol", force_tol),) if force_tol is not None
                                                                     else ()):
-        if not (isinstance(value, numbers.Real) and math.isfinite(value) and value > 0):
-            raise ValueError(f"{name} must be finite and > 0, got {value!r}")
-    if isinstance(max_iter, bool) or not isinstance(max_iter, (int, np.integer)) or max_iter < 1:
-        raise ValueError(f"max_iter must be an integer >= 1, got {max_iter!r}")
+        check_tolerance(value, name)
+    check_iterations(max_iter)
     if law is not None:
         if not isinstance(law, TabulatedLaw):
             raise ValueError(f"law must be None (Hertz) or a contactlib.two_scale.tabulated_law(...), got {law!r}")
