@@ -162,7 +162,9 @@ def solve_semismooth(
                              displacement=displacement.reshape(shape), penetration=float(approach),
                              mean_pressure=float(positive.mean()), iterations=iterations, residual=residual,
                              converged=bool(own and residual <= tol), solver=name)
-        if not state.converged and residual <= tol:  # only negative pressures left: clipped, is it an answer?
+        # only negative pressures left: clipped, is it an answer? (not on a plate: clipping even 1e-6 of the load
+        # displaces it by more than tol, so the check was an operator application a set for nothing)
+        if not state.converged and residual <= tol and set_floor is None:
             state = _clipped(operator, positive, hp, float(approach), total if load_control else None, shape, scale,
                              tol, iterations, name) or state
         stop = monitor is not None and monitor(k, residual, lambda s=state: s)
