@@ -19,7 +19,7 @@ from .bodies import BodyModel, Layer, body_model
 from .grid import Grid
 from .nonsymmetric import NonSymmetricSolve
 from .inputs import EDGE_TENSION, check_friction, check_iterations, check_loads, check_tolerance, check_velocity, \
-    edge_tension, grid_of, periodic_of, touches_edge
+    edge_tension, grid_of, periodic_of, round_off_floor, touches_edge
 from .operators import KERNELS
 from .solvers.coarse import PLATE_SET_FLOOR
 from .solvers import (ContactState, solve_active_set, solve_periodic_displacement, solve_polonsky_keer,
@@ -371,12 +371,12 @@ class _Setup(NonSymmetricSolve):
         if self.operator.periodic:
             return
         jkr = self.adhesion is not None and not self.adhesion.cohesive
-        if touches_edge(pressure) or (jkr and edge_tension(pressure, 0.0)):
+        if touches_edge(pressure) or (jkr and edge_tension(pressure, round_off_floor(pressure))):
             raise ValueError(
                 "periodic=False: the contact reaches the edge of the window, so the surface outside it would "
                 "carry load too; enlarge the window (or use periodic=True for a periodic surface)"
             )
-        if self.adhesion is not None and not jkr and edge_tension(pressure, self.adhesion.peak_stress):
+        if self.adhesion is not None and not jkr and edge_tension(pressure, EDGE_TENSION * self.adhesion.peak_stress):
             raise ValueError(
                 "periodic=False: the adhesive zone reaches the edge of the window (tension above "
                 f"{EDGE_TENSION:g} of the law's peak stress there), so adhesion beyond it is cut off; enlarge the "

@@ -186,15 +186,24 @@ within 0.69 ranges of gap), so the window cuts off adhesion that acts beyond it:
 An exponential law's weaker tail at the edge is left to the user's window."""
 
 
-def edge_tension(pressure: np.ndarray, peak_stress: float) -> bool:
-    """Whether a non-periodic adhesive state's edge carries tension above :data:`EDGE_TENSION` of ``peak_stress``."""
-    edges = [np.take(pressure, i, axis=a) for a in range(pressure.ndim) for i in (0, -1)]
-    return any(np.any(e < -EDGE_TENSION * peak_stress) for e in edges)
+def _edges(pressure: np.ndarray) -> list[np.ndarray]:
+    """The window's edge rows and columns (the two ends of a profile)."""
+    return [np.take(pressure, i, axis=a) for a in range(pressure.ndim) for i in (0, -1)]
+
+
+def round_off_floor(pressure: np.ndarray) -> float:
+    """:data:`EDGE_RTOL` times the largest ``|pressure|``: below it an edge value is round-off [pressure]."""
+    return EDGE_RTOL * float(np.max(np.abs(pressure), initial=0.0))
+
+
+def edge_tension(pressure: np.ndarray, floor: float) -> bool:
+    """Whether a non-periodic adhesive state's edge carries tension above ``floor`` [pressure]
+    (:data:`EDGE_TENSION` of a cohesive law's peak stress)."""
+    return any(np.any(e < -floor) for e in _edges(pressure))
 
 
 def touches_edge(pressure: np.ndarray) -> bool:
     """Whether a non-periodic footprint reaches the window's edge: compression there above
     :data:`EDGE_RTOL` times the largest ``|pressure|`` (the adhesive tension included) [dimensionless test]."""
-    edges = [np.take(pressure, i, axis=a) for a in range(pressure.ndim) for i in (0, -1)]
-    floor = EDGE_RTOL * float(np.max(np.abs(pressure), initial=0.0))
-    return any(np.any(e > floor) for e in edges)
+    floor = round_off_floor(pressure)
+    return any(np.any(e > floor) for e in _edges(pressure))
