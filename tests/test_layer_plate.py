@@ -231,3 +231,16 @@ def test_plate_loose_tolerance_costs_no_more_than_a_tight_one(friction):
     assert loose.attrs["converged"] == 1 and float(loose.residual) <= 1e-3
     assert int(loose.iterations) <= int(tight.iterations)
     assert np.linalg.norm(loose.pressure - tight.pressure) / np.linalg.norm(tight.pressure) < 1e-2
+
+
+def test_plate_penetration_control_with_a_single_point_in_contact():
+    """A shallow approach on a plate presses one point: every coarse field, centred on that set, vanishes, and the
+    coarse space's Cholesky factor failed with a raw LinAlgError. Now the coarse space is empty there, and the
+    state is load control's at the load it finds."""
+    h = contactlib.surfaces.self_affine(2048, hurst=0.8, q_roll=1, q_cutoff=256, rms_slope=0.1, seed=1, dim=1)
+    pushed = contactlib.solve(h, E=1.0, nu=0.3, penetration=0.3 * float(h.std()), layer=_layer())
+    assert pushed.attrs["converged"] == 1 and int(np.count_nonzero(pushed.pressure.values)) == 1
+    loaded = contactlib.solve(h, E=1.0, nu=0.3, mean_pressure=float(pushed.mean_pressure), layer=_layer())
+    assert float(loaded.penetration) == pytest.approx(float(pushed.penetration), rel=1e-9)
+    np.testing.assert_allclose(loaded.pressure.values, pushed.pressure.values, rtol=0,
+                               atol=1e-9 * float(pushed.pressure.max()))

@@ -112,6 +112,8 @@ class TwoLevel:
         E = (E + E.T) / 2
         # a sparse contact set cannot carry every wave (fewer points than fields): E is then singular
         # along combinations that vanish on the set, which the ridge leaves harmless (Z^T c = 0 there)
+        if E.size and not np.trace(E) > 0:  # a one-point set: every centred field vanishes on it, no coarse space
+            Z, KZ, E = Z[:0], KZ[:0], E[:0, :0]
         if E.size:
             E[np.diag_indices_from(E)] += 1e-12 * np.trace(E) / len(E)
             self.factor = cho_factor(E, check_finite=False)
