@@ -108,8 +108,8 @@ def solve_transient(
     progress : callable, optional
         ``progress(step, n_steps, time, row)`` after each step, ``row`` a dict of its scalars.
     log_every : int, optional
-        Log a line (logger ``contactlib.transient``, INFO) every this many steps; default a tenth of the
-        run when it has 100 steps or more.
+        Log a line (logger ``contactlib.transient``, INFO) every this many steps (0: none); default a tenth of
+        the run when it has 100 steps or more.
 
     Returns
     -------
@@ -134,6 +134,9 @@ def solve_transient(
     saved = _saved_steps(save_fields, times)
     record = _Record(stepper, times, positions, saved, path is not None)
     n = len(times)
+    if log_every is not None and (isinstance(log_every, bool) or not isinstance(log_every, (int, np.integer))
+                                  or log_every < 0):
+        raise ValueError(f"log_every must be a whole number of steps >= 0 (0: no log lines), got {log_every!r}")
     every = log_every if log_every is not None else (max(1, n // 10) if n >= 100 else 0)
     start = _time.perf_counter()
     try:

@@ -299,6 +299,8 @@ def test_a_step_that_does_not_converge_raises_with_the_steps_done():
 
 @pytest.mark.parametrize("kwargs, match", [
     (dict(times=[0.0, 1.0, 1.0]), "times must increase"),
+    (dict(log_every=-1), "log_every must be a whole number"),
+    (dict(log_every=0.5), "log_every must be a whole number"),
     (dict(times=[0.0, 2.0, 1.0]), "times must increase"),
     (dict(mean_pressure=[0.1, np.nan, 0.1]), "mean_pressure history holds a non-finite"),
     (dict(mean_pressure=[0.1, 0.1]), "mean_pressure has 2 values for 3 times"),
