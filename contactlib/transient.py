@@ -131,12 +131,12 @@ def solve_transient(
         penetration=penetration, path=path, layer=layer, periodic=periodic, tol=tol, max_iter=max_iter, length=length)
     if initial not in INITIAL_STATES:
         raise ValueError(f"initial must be one of {INITIAL_STATES}, got {initial!r}")
-    saved = _saved_steps(save_fields, times)
-    record = _Record(stepper, times, positions, saved, path is not None)
-    n = len(times)
     if log_every is not None and (isinstance(log_every, bool) or not isinstance(log_every, (int, np.integer))
                                   or log_every < 0):
         raise ValueError(f"log_every must be a whole number of steps >= 0 (0: no log lines), got {log_every!r}")
+    saved = _saved_steps(save_fields, times)
+    record = _Record(stepper, times, positions, saved, path is not None)
+    n = len(times)
     every = log_every if log_every is not None else (max(1, n // 10) if n >= 100 else 0)
     start = _time.perf_counter()
     try:
