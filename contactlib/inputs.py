@@ -101,11 +101,18 @@ def check_tolerance(value, name: str) -> None:
         raise ValueError(f"{name} must be a number in (0, 1), got {value!r}")
 
 
+def check_whole(value, name: str, minimum: int = 1) -> int:
+    """``value`` as an int: a whole number >= ``minimum`` (a float such as 64.0 passes; 2.5, NaN, infinity, a bool or a
+    string are refused with a ValueError naming ``name``)."""
+    if isinstance(value, bool) or not isinstance(value, numbers.Real) or not math.isfinite(value) \
+            or int(value) != value or value < minimum:
+        raise ValueError(f"{name} must be a whole number >= {minimum}, got {value!r}")
+    return int(value)
+
+
 def check_iterations(value, name: str = "max_iter") -> None:
     """An iteration bound: a whole number >= 1."""
-    if isinstance(value, bool) or not isinstance(value, numbers.Real) or not math.isfinite(value) \
-            or int(value) != value or value < 1:
-        raise ValueError(f"{name} must be a whole number >= 1, got {value!r}")
+    check_whole(value, name, 1)
 
 
 def check_loads(mean_pressure, penetration) -> None:

@@ -30,7 +30,8 @@ from .analysis.friction import directional_slope
 from .bodies import Layer, body_model
 from .contact import ConvergenceError, constrained_solve
 from .hereditary import PronyHistory
-from .inputs import check_friction, check_iterations, check_tolerance, grid_of, periodic_of, touches_edge
+from .inputs import check_friction, check_iterations, check_tolerance, check_whole, grid_of, periodic_of, \
+    touches_edge
 from .labels import attrs_for
 from .materials import Elastic, material_of
 
@@ -131,9 +132,8 @@ def solve_transient(
         penetration=penetration, path=path, layer=layer, periodic=periodic, tol=tol, max_iter=max_iter, length=length)
     if initial not in INITIAL_STATES:
         raise ValueError(f"initial must be one of {INITIAL_STATES}, got {initial!r}")
-    if log_every is not None and (isinstance(log_every, bool) or not isinstance(log_every, (int, np.integer))
-                                  or log_every < 0):
-        raise ValueError(f"log_every must be a whole number of steps >= 0 (0: no log lines), got {log_every!r}")
+    if log_every is not None:
+        check_whole(log_every, "log_every", 0)  # steps between log lines; 0: none
     saved = _saved_steps(save_fields, times)
     record = _Record(stepper, times, positions, saved, path is not None)
     n = len(times)

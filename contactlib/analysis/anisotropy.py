@@ -7,12 +7,10 @@ field; ``mu2(theta) = e(theta) . M . e(theta)`` is the mean square slope of a cu
 
 from __future__ import annotations
 
-import math
-import numbers
-
 import numpy as np
 import xarray as xr
 
+from ..inputs import check_whole
 from .statistics import _half_spectrum_weights, _values_and_grid
 
 
@@ -34,9 +32,7 @@ def anisotropy_tensor(field, zeta1: float, zeta2: float, *, length=None, n_theta
         raise ValueError("anisotropy_tensor needs a 2D field")
     if not (np.isfinite(zeta2) and 0 <= zeta1 < zeta2):
         raise ValueError(f"need 0 <= zeta1 < zeta2, finite, got {zeta1}, {zeta2}")
-    if isinstance(n_theta, bool) or not isinstance(n_theta, numbers.Real) or not math.isfinite(n_theta) \
-            or int(n_theta) != n_theta or n_theta < 2:
-        raise ValueError(f"n_theta must be a whole number >= 2, got {n_theta!r}")
+    check_whole(n_theta, "n_theta", 2)
     q0 = 2 * np.pi / grid.lengths[0]
     qx, qy = grid.wavevectors()
     q = np.hypot(qx, qy)

@@ -6,14 +6,11 @@ PSD convention: ``C(q) = (2 pi)^-dim * int <h(0) h(x)> exp(-i q.x) d^dim x``, so
 
 from __future__ import annotations
 
-import math
-import numbers
-
 import numpy as np
 import xarray as xr
 
 from ..grid import Grid
-from ..inputs import _window_of
+from ..inputs import _window_of, check_whole
 from ..labels import attrs_for
 
 
@@ -82,9 +79,8 @@ def psd(field, *, length=None, bins: int | None = None) -> xr.DataArray:
 
     Bins are one ``q0 = 2 pi / L`` wide (or ``bins`` log-spaced bins) up to Nyquist.
     """
-    if bins is not None and (isinstance(bins, bool) or not isinstance(bins, numbers.Real) or not math.isfinite(bins)
-                             or int(bins) != bins or bins < 1):
-        raise ValueError(f"bins must be None or a whole number >= 1, got {bins!r}")
+    if bins is not None:
+        check_whole(bins, "bins")
     values, grid = _values_and_grid(field, length)
     spec = np.abs(np.fft.rfftn(values - values.mean())) ** 2
     c = spec * grid.element_area**2 / ((2 * np.pi) ** grid.dim * float(np.prod(grid.lengths)))

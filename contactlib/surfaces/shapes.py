@@ -10,6 +10,7 @@ import xarray as xr
 
 from .._version import __version__
 from ..grid import Grid
+from ..inputs import check_whole
 from ..labels import attrs_for
 
 
@@ -24,8 +25,7 @@ def _as_dataarray(values, grid: Grid, length_unit: str, **attrs) -> xr.DataArray
 def _grid(n, length, dim) -> Grid:
     if dim not in (1, 2):
         raise ValueError(f"dim must be 1 or 2, got {dim!r}")
-    if isinstance(n, bool) or not isinstance(n, numbers.Real) or not math.isfinite(n) or int(n) != n or n < 2:
-        raise ValueError(f"n must be an integer >= 2, got {n!r}")
+    check_whole(n, "n", 2)
     if not (isinstance(length, numbers.Real) and math.isfinite(length) and length > 0):
         raise ValueError(f"length must be finite and > 0, got {length!r}")
     return Grid((int(n),) * dim, (float(length),) * dim)
@@ -84,9 +84,8 @@ def spheres(n: int, *, length: float = 1.0, radius, summit_height=0.0, centers=N
     if sum(v is not None for v in (centers, count, lattice)) != 1:
         raise ValueError("give exactly one of centers, count or lattice")
     for name, value in (("lattice", lattice), ("count", count)):
-        if value is not None and (isinstance(value, bool) or not np.isfinite(value) or int(value) != value
-                                  or value < 1):
-            raise ValueError(f"{name} must be a whole number >= 1, got {value!r}")
+        if value is not None:
+            check_whole(value, name)
     for name, value in (("summit_height", summit_height), ("height_std", height_std)):
         if not np.all(np.isfinite(np.asarray(value, dtype=float))):
             raise ValueError(f"{name} must be finite, got {value!r}")

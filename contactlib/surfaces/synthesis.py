@@ -11,6 +11,7 @@ from .. import fft
 from .._version import __version__
 from ..analysis import statistics
 from ..grid import Grid
+from ..inputs import check_whole
 from ..labels import attrs_for
 from .spectra import self_affine_psd, stretched_wavenumber
 
@@ -62,7 +63,7 @@ def self_affine(
     -------
     xarray.DataArray ``height`` with dims ``("x", "y")`` or ``("x",)``.
     """
-    n = _check_int(n, "n", minimum=2)
+    n = check_whole(n, "n", 2)
     if dim not in (1, 2):
         raise ValueError(f"dim must be 1 or 2, got {dim!r}")
     if not (0 < hurst <= 1):
@@ -117,8 +118,3 @@ def self_affine(
                  contactlib_version=__version__)
     return xr.DataArray(heights, dims=dims, coords=coords, name="height", attrs=attrs)
 
-
-def _check_int(value, name: str, *, minimum: int) -> int:
-    if int(value) != value or value < minimum:
-        raise ValueError(f"{name} must be an integer >= {minimum}, got {value!r}")
-    return int(value)

@@ -18,7 +18,7 @@ import xarray as xr
 from .. import surfaces
 from .._version import __version__
 from ..contact import ConvergenceError
-from ..inputs import check_iterations, check_tolerance
+from ..inputs import check_iterations, check_tolerance, check_whole
 from ..labels import attrs_for, dataset
 from ..materials import contact_modulus
 from ..operators import Compliance
@@ -81,9 +81,8 @@ def _material(material, E, nu) -> tuple[float, float]:
 def _table_with_grid(asperities, *, length, periodic, n, scale: str, law=None) -> AsperityTable:
     """The validated table, with the caps built on an ``n x n`` grid when a Dataset feeds the two-scale
     method (or ``n`` is given)."""
-    if n is not None and (isinstance(n, bool) or not isinstance(n, numbers.Real) or not math.isfinite(n)
-                          or int(n) != n):
-        raise ValueError(f"n must be a whole number of grid points per side, got {n!r}")
+    if n is not None:
+        check_whole(n, "n", 2)  # grid points per side
     table = asperity_table(asperities, length=length, periodic=periodic,
                            footprint_radius=None if law is None else law.footprint_radius)
     if law is not None:

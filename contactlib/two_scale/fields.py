@@ -9,6 +9,7 @@ import xarray as xr
 from scipy.spatial import cKDTree
 
 from .. import surfaces
+from ..inputs import check_whole
 
 SUMMIT_OVER_FOOTPRINT = 0.1
 """Summit height over footprint radius of the tallest cap: caps of slope about 0.2 at their edge."""
@@ -48,14 +49,13 @@ def random_asperity_field(count: int, *, coverage: float, nodes_per_spacing: int
     """
     if not 0 < coverage < 0.54:
         raise ValueError(f"coverage must lie in (0, 0.54) (random sequential addition jams at 0.547), got {coverage!r}")
-    if isinstance(count, bool) or not np.isfinite(count) or int(count) != count or count < 1:
-        raise ValueError(f"count must be a whole number >= 1, got {count!r}")
+    check_whole(count, "count")
     if not (np.isfinite(height_scatter) and height_scatter >= 0):  # negative: every summit below the base
         raise ValueError(f"height_scatter must be finite and >= 0, got {height_scatter!r}")
     if n is None and not (np.isfinite(nodes_per_spacing) and nodes_per_spacing > 0):
         raise ValueError(f"nodes_per_spacing must be finite and > 0, got {nodes_per_spacing!r}")
-    if n is not None and (isinstance(n, bool) or not np.isfinite(n) or int(n) != n):
-        raise ValueError(f"n must be a whole number of grid points, got {n!r}")
+    if n is not None:
+        check_whole(n, "n", 2)  # grid points per side
     rng = np.random.default_rng(seed)
     footprint = math.sqrt(coverage / (math.pi * count))  # of the tallest possible cap
     tallest = SUMMIT_OVER_FOOTPRINT * footprint

@@ -17,13 +17,13 @@ Hertz at the default 128 nodes).
 from __future__ import annotations
 
 import math
-import numbers
 from collections.abc import Callable
 
 import numpy as np
 from scipy.interpolate import PchipInterpolator
 
 from ..contact import solve as full_solve
+from ..inputs import check_whole
 from ..materials import contact_modulus
 
 WINDOW = 3.0
@@ -181,10 +181,10 @@ def tabulated_law(drop: Callable[[np.ndarray], np.ndarray], *, footprint_radius:
                         ("smallest", smallest)):
         if not (math.isfinite(value) and value > 0):
             raise ValueError(f"{name} must be finite and > 0, got {value!r}")
-    if not all(isinstance(v, numbers.Real) and math.isfinite(v) and int(v) == v for v in (points, nodes)) \
-            or int(points) < 3 or int(nodes) < 16 or not smallest < 1:
-        raise ValueError(f"points >= 3 and nodes >= 16 (whole numbers) and smallest < 1, got {points!r}, {nodes!r}, "
-                         f"{smallest!r}")
+    check_whole(points, "points", 3)
+    check_whole(nodes, "nodes", 16)
+    if not smallest < 1:
+        raise ValueError(f"smallest must be < 1 (a fraction of max_penetration), got {smallest!r}")
     if float(drop(footprint_radius)) <= max_penetration:
         raise ValueError(f"max_penetration {max_penetration!r} reaches the base: drop(footprint_radius) = "
                          f"{float(drop(footprint_radius))!r}")
