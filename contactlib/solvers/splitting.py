@@ -29,9 +29,16 @@ keeps falling, else the plain step is taken and the memory cleared) cuts the ite
 
 The residual is :func:`.contact_residual` of the projected pressure (mean rescaled to the load) and
 its true gap, so ``tol`` means what it means for every solver.
+
+Douglas-Rachford converges linearly, and slowly where the contact is small: 3 000-16 000 iterations on a
+1024-point profile at 0.3-2 % contact. A caller may pass ``finish``, a local method tried from the iterate
+(the semismooth Newton loop, :mod:`contactlib.nonsymmetric`): near the answer its contact set is nearly the
+final one, where that loop converges in a few set updates even on bodies where it diverges from a cold start.
 """
 
 from __future__ import annotations
+
+import dataclasses
 
 import numpy as np
 
@@ -61,6 +68,15 @@ at V tau q0 = 1e-4 .. 1e-2 (ratio 15.8) stalls there (residual 1e-5 .. 0.6) and 
 
 ANDERSON_MEMORY = 10
 """Past differences kept by the Anderson mixing."""
+
+FINISH_FIRST = 1000
+"""Iterations before the first try of ``finish`` (:func:`solve_splitting`); then after twice as many, and so on,
+and once more when ``max_iter`` passes. Where Douglas-Rachford converges sooner (500-1500 iterations at 10-60 %
+contact) nothing is tried."""
+
+FINISH_BELOW = 1e-4
+"""``finish`` is tried only from an iterate whose residual is below this: from 1e-3 the Newton loop failed on two
+of six 1024-point profiles (E_inf/E0 = 1000), from 1e-4 on none."""
 
 
 def loss_dominated(factor: np.ndarray | None) -> bool:
@@ -98,6 +114,7 @@ def solve_splitting(
     max_iter: int = 100_000,
     initial_pressure: np.ndarray | None = None,
     memory: int = ANDERSON_MEMORY,
+    finish=None,
 ) -> ContactState:
     """Pressure under ``heights`` [length] on a periodic body of compliance multiplier ``multiplier``.
 
@@ -114,6 +131,11 @@ def solve_splitting(
         Douglas-Rachford iterations (each one FFT pair) before returning unconverged.
     initial_pressure : ndarray, optional
         Warm start.
+    finish : callable, optional
+        ``finish(pressure) -> ContactState``: a local method started from an iterate (residual below
+        :data:`FINISH_BELOW`, after :data:`FINISH_FIRST`, twice as many, ... iterations, and at ``max_iter``); its
+        converged state is returned, its iterations added to these. An unconverged one is dropped and the
+        iteration goes on.
 
     Returns
     -------
@@ -176,7 +198,20 @@ def solve_splitting(
     best, d, state_fields = np.inf, 0.0, None
     plain_next = None
     last_norm = np.inf
-    it = 0
+    it, finish_at, finish_iterations = 0, FINISH_FIRST, 0
+
+    def finished(p, residual, it):
+        """``finish``'s converged state from ``p`` (residual ``residual`` after ``it`` iterations), or None."""
+        nonlocal finish_iterations
+        if finish is None or residual > FINISH_BELOW:
+            return None
+        state = finish(p)
+        finish_iterations += state.iterations
+        if not state.converged:
+            return None
+        return dataclasses.replace(state, iterations=it + finish_iterations,
+                                   solver=f"douglas-rachford+{state.solver}")
+
     for it in range(1, max_iter + 1):
         p = np.maximum(z, 0.0)
         y_hat, d = resolvent(fft.rfftn(2 * p - z), gamma, inverse)
@@ -198,6 +233,11 @@ def solve_splitting(
                 best, state_fields = fields[3], (fields, d)
             if fields[3] <= tol:
                 break
+            if it >= finish_at:
+                finish_at *= 2
+                done = finished(fields[0], fields[3], it)
+                if done is not None:
+                    return done
         if it % BALANCE_EVERY == 0 and it <= BALANCE_UNTIL:
             g = np.maximum(-z, 0.0) / gamma
             gnorm = _norm(g)
@@ -215,8 +255,13 @@ def solve_splitting(
     if state_fields is None:  # stopped before the first check
         state_fields = (evaluate(np.maximum(z, 0.0), d), d)
     (p, u, gap, residual), d = state_fields
+    if residual > tol:  # max_iter passed: a last try from the best iterate
+        done = finished(p, residual, it)
+        if done is not None:
+            return done
     return ContactState(pressure=p, gap=gap, displacement=u, penetration=float(d), mean_pressure=float(p.mean()),
-                        iterations=it, residual=residual, converged=bool(residual <= tol), solver="douglas-rachford")
+                        iterations=it + finish_iterations, residual=residual, converged=bool(residual <= tol),
+                        solver="douglas-rachford")
 
 
 def _dot(a: np.ndarray, b: np.ndarray) -> float:
