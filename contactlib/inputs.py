@@ -15,10 +15,19 @@ from .grid import Grid
 from .materials import Viscoelastic
 
 
+def real_values(values, name: str) -> np.ndarray:
+    """``values`` as a float array, refusing complex ones by ``name`` (numpy would drop the imaginary part with a
+    warning: a field's FFT passed for the field itself)."""
+    raw = values if isinstance(values, np.ndarray) else np.asarray(values)
+    if np.iscomplexobj(raw):
+        raise ValueError(f"{name} must be real, got complex values (dtype {raw.dtype})")
+    return np.asarray(raw, dtype=float)
+
+
 def grid_of(heights, length=None) -> tuple[np.ndarray, Grid, tuple[str, ...], dict]:
     """Heights array, grid, dim names and coords of a DataArray or ndarray input."""
     if isinstance(heights, xr.DataArray):
-        values = np.asarray(heights.values, dtype=float)
+        values = real_values(heights.values, "heights")
         dims = tuple(heights.dims)
         window = _window_of(heights) if all(d in heights.coords for d in dims) else None
         if length is None:
@@ -33,7 +42,7 @@ def grid_of(heights, length=None) -> tuple[np.ndarray, Grid, tuple[str, ...], di
                                  "times points): omit length, or give the heights as an ndarray")
         coords = {d: heights[d] for d in dims if d in heights.coords}
     else:
-        values = np.asarray(heights, dtype=float)
+        values = real_values(heights, "heights")
         if values.ndim not in (1, 2):
             raise ValueError(f"heights must be 1D or 2D, got {values.ndim} dimensions")
         dims = ("x", "y")[: values.ndim]

@@ -73,6 +73,19 @@ def test_non_finite_heights(heights, bad):
         contactlib.solve(values, E=1.0, nu=0.3, mean_pressure=0.01)
 
 
+@pytest.mark.parametrize("call", [
+    lambda h: contactlib.solve(h.astype(complex), E=1.0, nu=0.3, mean_pressure=0.01),
+    lambda h: contactlib.solve(h.values.astype(complex), E=1.0, nu=0.3, mean_pressure=0.01),
+    lambda h: contactlib.analysis.rms_slope(h.astype(complex)),
+    lambda h: contactlib.analysis.contact_area_fraction(h.values + 0j),
+])
+def test_complex_fields_are_refused(heights, call):
+    """Complex heights or fields (a spectrum passed for the field) were read as their real part with numpy's
+    ComplexWarning; now refused by name."""
+    with pytest.raises(ValueError, match="(heights|field|pressure) must be real"):
+        call(heights)
+
+
 @pytest.mark.parametrize("shape", [(1,), (1, 16), (16, 1), (2, 2, 2)])
 def test_grid_too_small_or_wrong_rank(shape):
     with pytest.raises(ValueError, match="heights|grid"):

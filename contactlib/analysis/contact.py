@@ -8,9 +8,11 @@ import numbers
 import numpy as np
 from scipy import ndimage
 
+from ..inputs import real_values
+
 
 def _pressure(pressure) -> np.ndarray:
-    p = np.asarray(pressure, dtype=float)
+    p = real_values(pressure, "pressure")
     if p.size == 0 or not np.all(np.isfinite(p)):
         raise ValueError("pressure must be a non-empty field of finite values (NaN would count as out of contact)")
     return p

@@ -10,7 +10,7 @@ import numpy as np
 import xarray as xr
 
 from ..grid import Grid
-from ..inputs import _window_of, check_whole
+from ..inputs import _window_of, check_whole, real_values
 from ..labels import attrs_for
 
 
@@ -18,11 +18,11 @@ def _values_and_grid(field, length=None) -> tuple[np.ndarray, Grid]:
     """The field's values and grid, refused unless 1D or 2D, at least 2 points a side, finite, on a window of
     finite positive lengths."""
     if isinstance(field, xr.DataArray):
-        values = np.asarray(field.values, dtype=float)
+        values = real_values(field.values, "field")
         if length is None and values.ndim in (1, 2) and min(values.shape, default=0) >= 2:
             length = _window_of(field)  # evenly spaced coordinates, as solve reads them
     else:
-        values = np.asarray(field, dtype=float)
+        values = real_values(field, "field")
         if length is None:
             length = 1.0
     check_field(values, "field")

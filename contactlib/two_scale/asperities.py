@@ -17,6 +17,7 @@ import xarray as xr
 
 from .._numba import jit
 from ..grid import Grid
+from ..inputs import real_values
 
 NEIGHBOUR_SPACINGS = 2.5
 """The Ewald sum's real-space reach in mean spacings ``L / sqrt(N)`` (:data:`.interaction.EWALD_NEIGHBOURS`):
@@ -109,7 +110,7 @@ def _heights_of(asperities: xr.DataArray) -> tuple[np.ndarray, Grid, float]:
     reads them (window length = coordinate step x points), with its checks: finiteness by the extremes rather
     than a mask, the highest kept for the approach, and the coordinates from their indexes rather than as
     DataArrays (0.6 -> 0.2 ms on 700^2)."""
-    values = np.ascontiguousarray(asperities.values, dtype=float)
+    values = np.ascontiguousarray(real_values(asperities.values, "asperities"))
     lengths = []
     for d, size in zip(asperities.dims, values.shape):
         if d not in asperities.coords:
