@@ -27,6 +27,9 @@ FINISH_ITERATIONS = 100
 1000, 0.3-4 % contact) and in 200-400 on 128^2 surfaces, where Douglas-Rachford itself needs only 500-1000: a
 larger budget would cost more there than it saves."""
 
+FINISH_SET_ITERATIONS = 30
+"""GMRES iterations on one contact set in such a finish: the converging ones used at most 27."""
+
 
 class NonSymmetricSolve:
     """The dispatch of a scene with a skew part, mixed into :class:`contactlib.contact._Setup` (which gives
@@ -61,15 +64,15 @@ class NonSymmetricSolve:
         return (self.operator.periodic and self.solver_args["mean_pressure"] is not None
                 and not splitting.loss_dominated(self.body.factor))
 
-    def _krylov(self, first_try: bool = False, initial_pressure=None, budget: int = krylov.TRY_ITERATIONS
-                ) -> ContactState:
+    def _krylov(self, first_try: bool = False, initial_pressure=None, budget: int = krylov.TRY_ITERATIONS,
+                set_cap: int = krylov.TRY_SET_ITERATIONS) -> ContactState:
         """The semismooth Newton loop with GMRES on each contact set (:mod:`contactlib.solvers.krylov`), from the
         warm start or from the symmetric part's constrained CG stopped early. ``first_try`` (a loss-dominated
         body, Douglas-Rachford after it): within :data:`~contactlib.solvers.krylov.TRY_ITERATIONS` in all,
         :data:`~contactlib.solvers.krylov.TRY_SET_ITERATIONS` a set, stopped on a residual growing past
         :data:`~contactlib.solvers.krylov.TRY_GROWTH` times its first set's (returned unconverged, with its
-        residual); ``budget``: its iterations in all (default the first try's), from ``initial_pressure`` when
-        given (else the solve's own start)."""
+        residual); ``budget`` and ``set_cap``: its iterations in all and on one set (default the first try's),
+        from ``initial_pressure`` when given (else the solve's own start)."""
         args = self.solver_args
         if initial_pressure is not None:
             args = {**args, "initial_pressure": initial_pressure}
@@ -77,7 +80,7 @@ class NonSymmetricSolve:
         multiplier = splitting.fourier_multiplier(self.body.compliance, self.body.coupling)
         op = self.operator
         if op.preconditionable:
-            body = krylov.ComplexCompliance(multiplier, self.grid, cap=krylov.TRY_SET_ITERATIONS if first_try else None)
+            body = krylov.ComplexCompliance(multiplier, self.grid, cap=set_cap if first_try else None)
         else:  # a plate: GMRES with the soft long waves solved exactly on each set
             modes = coarse.soft_modes(op.grid, op.multiplier * float(np.prod(op.work_shape)), op.E_star)
             body = coarse.PlateCompliance(multiplier, self.grid, modes)
@@ -103,5 +106,6 @@ class NonSymmetricSolve:
         finish = None
         if self.solver_args["mean_pressure"] is not None and self.operator.preconditionable:
             def finish(pressure):
-                return self._krylov(first_try=True, initial_pressure=pressure, budget=FINISH_ITERATIONS)
+                return self._krylov(first_try=True, initial_pressure=pressure, budget=FINISH_ITERATIONS,
+                                    set_cap=FINISH_SET_ITERATIONS)
         return splitting.solve_splitting(multiplier, self.values, **self.solver_args, finish=finish)
