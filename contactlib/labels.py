@@ -111,6 +111,17 @@ def to_dataset(state, *, dims, coords, length_unit="m", pressure_unit="Pa", extr
     return ds
 
 
+def _variable(dims, values, attrs) -> xr.Variable:
+    """``xr.Variable(dims, values, attrs)``; for a plain numpy array or number of a numeric dtype (the labels'
+    values) without the conversions other array types need (``fastpath``: the 14 variables of a two-scale result
+    84 -> 59 us)."""
+    if type(values) is np.ndarray or isinstance(values, (np.generic, float, int)):
+        array = np.asarray(values)
+        if array.dtype.kind in "biufc":
+            return xr.Variable(dims, array, attrs, fastpath=True)
+    return xr.Variable(dims, values, attrs)
+
+
 def dataset(data: dict, coords: dict, attrs: dict | None = None) -> xr.Dataset:
     """``xr.Dataset(data, coords=coords, attrs=attrs)`` for ``name: (dims, values, attrs)`` entries whose shapes
     agree by construction, built directly from its variables and the dimension coordinates' indexes.
@@ -126,13 +137,13 @@ def dataset(data: dict, coords: dict, attrs: dict | None = None) -> xr.Dataset:
         return xr.Dataset(data, coords=coords, attrs=attrs)
     variables, indexes = {}, {}
     for name, (dims, values, var_attrs) in data.items():
-        variables[name] = xr.Variable(dims, values, var_attrs)
+        variables[name] = _variable(dims, values, var_attrs)
     for name, (dims, values, var_attrs) in coords.items():
         if ((dims,) if isinstance(dims, str) else tuple(dims)) == (name,):  # a dimension coordinate: indexed
             variables[name] = xr.IndexVariable(name, values, var_attrs)
             indexes[name] = xr.indexes.PandasIndex(variables[name].to_index(), name)
         else:
-            variables[name] = xr.Variable(dims, values, var_attrs)
+            variables[name] = _variable(dims, values, var_attrs)
     try:
         return construct(variables, set(coords), attrs=dict(attrs or {}), indexes=indexes)
     except TypeError:  # the private method's signature changed

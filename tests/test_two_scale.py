@@ -847,17 +847,19 @@ def test_coarser_products_for_the_newton_steps_leave_the_answer():
     assert np.max(np.abs(with_coarse.force - without.force)) < 1e-4 * float(without.force.max())
 
 
-@pytest.mark.parametrize("count, reach, periodic", [(1000, 0.079, True), (1000, 0.079, False), (30, 0.9, True),
-                                                     (30, 0.4, True), (200, 0.4, False), (5, 0.0, True)])
-def test_cell_list_pairs_match_a_kd_tree(count, reach, periodic):
+@pytest.mark.parametrize("count, reach, periodic, spread", [
+    (1000, 0.079, True, 1.0), (1000, 0.079, False, 1.0), (30, 0.9, True, 1.0), (30, 0.4, True, 1.0),
+    (200, 0.4, False, 1.0), (5, 0.0, True, 1.0), (400, 0.05, True, 0.1)])
+def test_cell_list_pairs_match_a_kd_tree(count, reach, periodic, spread):
     """The neighbour pairs of the numba cell list against scipy's k-d tree (periodic or not, one cell or many,
-    points on the window's edges), and their distances against the nearest image's."""
+    points on the window's edges, points clustered in a tenth of the window: 40x the room first allocated, walked
+    again), and their distances against the nearest image's."""
     from scipy.spatial import cKDTree
 
     from contactlib.two_scale.asperities import cell_pairs
 
     rng = np.random.default_rng(count)
-    centers = rng.uniform(0.0, 1.0, (count, 2))
+    centers = rng.uniform(0.0, spread, (count, 2))
     centers[0], centers[-1] = [0.0, 0.0], [1.0 - 1e-12, 0.5]
     k, l, r = cell_pairs(centers, 1.0, reach, periodic)
     fresh = cKDTree(centers, boxsize=1.0 if periodic else None).query_pairs(reach, output_type="ndarray")

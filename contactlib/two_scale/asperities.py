@@ -107,8 +107,8 @@ class AsperityTable:
 
 def _heights_of(asperities: xr.DataArray) -> tuple[np.ndarray, Grid, float]:
     """The heights of a 2D DataArray, their grid and the highest [length], as :func:`contactlib.inputs.grid_of`
-    reads them (window length = coordinate step x points), with its checks: finiteness by the extremes rather
-    than a mask, the highest kept for the approach, and the coordinates from their indexes rather than as
+    reads them (window length = coordinate step x points), with its checks: finiteness and the highest (kept for
+    the approach) in one pass rather than a mask, and the coordinates from their indexes rather than as
     DataArrays (0.6 -> 0.2 ms on 700^2)."""
     values = np.ascontiguousarray(real_values(asperities.values, "asperities"))
     lengths = []
@@ -120,10 +120,35 @@ def _heights_of(asperities: xr.DataArray) -> tuple[np.ndarray, Grid, float]:
         if size < 2:
             raise ValueError(f"asperities: grid smaller than 2 points along {d!r}")
         lengths.append(float(c[1] - c[0]) * size)
-    highest = float(values.max())
-    if not (math.isfinite(highest) and math.isfinite(float(values.min()))):  # a NaN or an infinity shows in them
+    highest, finite = _highest_and_finite(values.reshape(-1))
+    if not finite:
         raise ValueError("asperities: the heights contain NaN or infinite values")
     return values, Grid(values.shape, tuple(lengths)), highest
+
+
+@jit
+def _highest_and_finite(values):
+    """The largest value and whether all are finite, in one pass over the grid: numpy's ``max`` and ``min`` read it
+    twice, 3.9 MB each at 700^2. From memory (the heights out of cache, as after a full solve) 0.19 against 0.30 ms;
+    in cache 0.17 against 0.10 ms. Four lanes, so the compares pipeline; ``v * 0`` is NaN exactly for a NaN or an
+    infinity, and then so is the sum."""
+    n = values.size
+    h0 = h1 = h2 = h3 = -np.inf
+    s0 = s1 = s2 = s3 = 0.0
+    i = 0
+    while i + 4 <= n:
+        a, b, c, d = values[i], values[i + 1], values[i + 2], values[i + 3]
+        h0, h1, h2, h3 = max(h0, a), max(h1, b), max(h2, c), max(h3, d)
+        s0 += a * 0.0
+        s1 += b * 0.0
+        s2 += c * 0.0
+        s3 += d * 0.0
+        i += 4
+    while i < n:
+        h0 = max(h0, values[i])
+        s0 += values[i] * 0.0
+        i += 1
+    return max(max(h0, h1), max(h2, h3)), (s0 + s1) + (s2 + s3) == 0.0
 
 
 def _column(source, names: tuple[str, ...], label: str) -> np.ndarray:
@@ -310,8 +335,18 @@ def cell_pairs(centers: np.ndarray, length: float, reach: float, periodic: bool)
     cell = index[:, 0] * cells + index[:, 1]
     order = np.argsort(cell, kind="stable")
     start = np.searchsorted(cell[order], np.arange(cells * cells + 1))
-    return _cell_pairs(np.ascontiguousarray(centers[order].T), order, start, cells, float(length), float(reach),
-                       bool(periodic))
+    xy = np.ascontiguousarray(centers[order].T)
+    # room for the pairs of a uniform field within reach and a third more; a clustered field with more is walked
+    # again with room for all (the candidates' bound, 3x the pairs at 10^3 points, put each array above glibc's
+    # mmap threshold: fresh pages on every call)
+    n = len(centers)
+    room = int(min(1.35 * 0.5 * n * n * math.pi * reach * reach / (length * length), 0.5 * n * n)) + 64
+    while True:
+        k, l, r = np.empty(room, np.int64), np.empty(room, np.int64), np.empty(room)
+        count = _cell_pairs(xy, order, start, cells, float(length), float(reach), bool(periodic), k, l, r)
+        if count <= room:
+            return k[:count], l[:count], r[:count]
+        room = count
 
 
 _FORWARD = np.array([[0, 0], [0, 1], [1, -1], [1, 0], [1, 1]])
@@ -337,22 +372,14 @@ def _neighbour_cell(a, b, f, cells, length, periodic):
 
 
 @jit
-def _cell_pairs(xy, order, start, cells, length, reach, periodic):
+def _cell_pairs(xy, order, start, cells, length, reach, periodic, k_out, l_out, r_out):
     """The pairs of :func:`cell_pairs` from the coordinates sorted by cell ``xy`` (2, N) (point ``order[t]`` at
-    ``xy[:, t]``; cell ``c``'s points at ``start[c]`` to ``start[c + 1]``)."""
+    ``xy[:, t]``; cell ``c``'s points at ``start[c]`` to ``start[c + 1]``), written to ``k_out``, ``l_out``, ``r_out``
+    as far as they have room; returns how many there are."""
     reach2 = reach * reach
     blocks = 1 if cells == 1 else 5
     wrap = periodic and cells == 1  # one cell: the nearest image pair by pair
-    bound = 0
-    for a in range(cells):  # candidates: an upper bound on the pairs, to allocate once
-        for b in range(cells):
-            own = start[a * cells + b + 1] - start[a * cells + b]
-            bound += own * (own - 1) // 2
-            for f in range(1, blocks):
-                c, _, _ = _neighbour_cell(a, b, f, cells, length, periodic)
-                if c >= 0:
-                    bound += own * (start[c + 1] - start[c])
-    k_out, l_out, r_out = np.empty(bound, np.int64), np.empty(bound, np.int64), np.empty(bound)
+    room = k_out.size
     x, y = xy[0], xy[1]
     count = 0
     for a in range(cells):
@@ -371,8 +398,9 @@ def _cell_pairs(xy, order, start, cells, length, reach, periodic):
                             dy -= length * np.rint(dy / length)
                         d2 = dx * dx + dy * dy
                         if d2 <= reach2:
-                            i, j = order[s], order[t]
-                            k_out[count], l_out[count] = min(i, j), max(i, j)
-                            r_out[count] = math.sqrt(d2)
+                            if count < room:
+                                i, j = order[s], order[t]
+                                k_out[count], l_out[count] = min(i, j), max(i, j)
+                                r_out[count] = math.sqrt(d2)
                             count += 1
-    return k_out[:count], l_out[:count], r_out[:count]
+    return count
