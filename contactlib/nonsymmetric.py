@@ -8,6 +8,9 @@ which of the three solvers of this class runs, and in what order the others foll
 * Douglas-Rachford on the whole complex multiplier (:mod:`.solvers.splitting`): loss-dominated bodies,
   after a bounded first try of the Newton loop, and the last fallback. Where the Newton loop applies, its
   iterates are handed to that loop (bounded by :data:`FINISH_ITERATIONS`) to finish from near the answer.
+  Where it does not converge on a loss-dominated body, the fixed point is tried after it: on a thin confined
+  layer with one point in contact (E_inf/E0 = 1000) Douglas-Rachford found that point only after 10 590
+  iterations, the fixed point in 29.
 
 A converged answer is preferred to an unconverged one, and of two unconverged ones the smaller residual.
 """
@@ -48,6 +51,9 @@ class NonSymmetricSolve:
                 if first.converged:
                     return first
             state = self._splitting()
+            if not state.converged:  # the last resort: the fixed point on the skew part may still converge
+                coupled = solve_coupled(self._symmetric, self.body.coupling, self.values, **self.solver_args)
+                state = coupled if coupled.converged or coupled.residual < state.residual else state
         else:
             state = solve_coupled(self._symmetric, self.body.coupling, self.values, **self.solver_args)
             if not state.converged and self.operator.periodic:  # a stalled outer loop: the method that needs no split

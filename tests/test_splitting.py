@@ -63,6 +63,30 @@ def test_slow_splitting_is_finished_by_the_newton_loop():
     assert np.linalg.norm(p - alone.pressure) / np.linalg.norm(alone.pressure) < 1e-4
 
 
+def test_one_point_contact_on_a_thin_layer_falls_back_to_the_fixed_point():
+    """A thin confined layer (q0 h = 0.1), E_inf/E0 = 1000, V tau q0 = 1e-3, a load that one point carries: the Newton
+    loop's first try stalls (7.4e-6), Douglas-Rachford finds the point only after 10 590 iterations (past max_iter:
+    it raised ConvergenceError), the fixed point on the skew part converges in 29. Its answer is Douglas-Rachford's,
+    run on, to 1e-6 of the peak."""
+    from contactlib import Layer
+
+    h = profile(seed=1)
+    q0 = q0_of(h)
+    layer = Layer(0.1 / q0)
+    out = contactlib.solve(h, material=GLASSY_1000, mean_pressure=0.002, sliding_velocity=1e-3 / q0, layer=layer,
+                           tol=1e-8)
+    assert out.attrs["solver"].startswith("coupled") and out.attrs["converged"] == 1 and float(out.residual) <= 1e-8
+    s = _setup(h, material=GLASSY_1000, mean_pressure=0.002, penetration=None, periodic=True, tol=1e-8,
+               max_iter=10_000, kernel="spectral", method="cg", length=None, initial_pressure=None, target_error=None,
+               layer=layer, friction=0.0, sliding_direction=None, sliding_velocity=1e-3 / q0)
+    alone = solve_splitting(fourier_multiplier(s.body.compliance, s.body.coupling), s.values, mean_pressure=0.002,
+                            tol=1e-10, max_iter=30_000)
+    assert alone.converged and alone.iterations > 10_000
+    p = out.pressure.values
+    assert np.count_nonzero(p) == np.count_nonzero(alone.pressure) == 1
+    assert np.max(np.abs(p - alone.pressure)) < 1e-6 * p.max()
+
+
 @pytest.mark.parametrize("zeta", [1e-3, 1e-2])
 def test_loss_dominated_answer_solves_the_real_space_problem(zeta):
     """The real-space eq 25 kernel (creep integrated in time, no Fourier multiplier) applied to the spectral
