@@ -395,7 +395,8 @@ class _Setup(NonSymmetricSolve):
             message = (f"{state.solver} did not converge in {state.iterations} iterations{outer}: residual "
                        f"{state.residual:.3e} > tol {tol:.1e}"
                        + (" (stalled: no progress over the last iterations; round-off floor or an ill-posed scene)"
-                          if stalled else ""))
+                          if stalled else "")
+                       + (f"; {self.attrs['monotone_message']}" if self.attrs.get("monotone") == 0 else ""))
             ds.attrs["convergence_message"] = message  # the partial state says why it is partial
             raise ConvergenceError(message, residual=state.residual, dataset=ds)
 
