@@ -104,6 +104,11 @@ def adhesion_curve(
                    kernel=kernel, method="cg", length=length, initial_pressure=None, target_error=None, layer=layer,
                    friction=0.0, sliding_direction=None, sliding_velocity=None, adhesion=adhesion,
                    **({"mean_pressure": None, "penetration": None} | first))
+    closed = float(setup.values.max() - setup.values.mean())
+    if not load_control and not setup.body.compliance.definite and values.max() >= closed:
+        # as solve refuses one such penetration (its steps failed one by one, the path's scalars NaN)
+        raise ValueError(f"penetrations: {float(values.max())!r} reaches full contact (max - mean height = {closed:.6g}); "
+                         "in a periodic window the load is then undetermined: stop below it, or give mean_pressures")
     start = time.perf_counter()
     if adhesion.model == "jkr":
         rows = _energy_path(setup, adhesion, path, load_control)

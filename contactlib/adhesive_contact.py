@@ -48,6 +48,11 @@ def check(adhesion, values: np.ndarray, *, spacing, mean_pressure, penetration, 
             raise ValueError(f"{name} must be finite, got {v!r}")
     if friction:
         raise ValueError("friction: adhesion is modelled frictionless (friction=0)")
+    if mean_pressure is not None and adhesion.cohesive and mean_pressure < -adhesion.peak_stress:
+        # the tension of a point is at most sigma_0 (at any gap): so is the window's mean
+        raise ValueError(f"mean_pressure {mean_pressure!r}: a tension beyond the cohesive law's peak stress sigma_0 = "
+                         f"work / range = {adhesion.peak_stress:.4g} over the whole window, which no state carries "
+                         "(the pull-off is smaller still; contactlib.adhesion_curve finds it)")
     if method != "cg":
         raise ValueError("method: adhesion is solved by its own solvers (method='cg')")
     if adhesion.model == "jkr":

@@ -396,7 +396,10 @@ class _Setup(NonSymmetricSolve):
                        f"{state.residual:.3e} > tol {tol:.1e}"
                        + (" (stalled: no progress over the last iterations; round-off floor or an ill-posed scene)"
                           if stalled else "")
-                       + (f"; {self.attrs['monotone_message']}" if self.attrs.get("monotone") == 0 else ""))
+                       + (f"; {self.attrs['monotone_message']}" if self.attrs.get("monotone") == 0 else "")
+                       + ("; under load control a tension beyond the pull-off has no equilibrium (contactlib."
+                          "adhesion_curve finds the pull-off; penetration control follows the branch past it)"
+                          if self.adhesion is not None and (self.solver_args["mean_pressure"] or 0.0) < 0 else ""))
             ds.attrs["convergence_message"] = message  # the partial state says why it is partial
             raise ConvergenceError(message, residual=state.residual, dataset=ds)
 
@@ -432,8 +435,8 @@ def _setup(heights, *, material, mean_pressure, penetration, periodic, tol, max_
     if adhesion is None:
         check_loads(mean_pressure, penetration)
     else:
-        adhesive_contact.check(adhesion, values, spacing=grid.spacing, mean_pressure=mean_pressure, penetration=penetration,
-                               friction=friction, method=method, periodic=periodic)
+        adhesive_contact.check(adhesion, values, spacing=grid.spacing, mean_pressure=mean_pressure,
+                               penetration=penetration, friction=friction, method=method, periodic=periodic)
     if target_error is not None:
         if tol is not None:
             raise ValueError("give tol or target_error, not both")

@@ -576,3 +576,23 @@ def test_adhesion_curve_refuses_the_window_solve_refuses():
     for end in (0.05, 0.08):
         with pytest.raises(ValueError, match="reaches the edge of the window"):
             contactlib.adhesion_curve(h, E=1.0, nu=0.3, adhesion=law, penetrations=[0.0, end], periodic=False)
+
+
+def test_tension_beyond_what_the_interface_carries():
+    """A rough 64^2 surface, Maugis law with sigma_0 = 0.01 E: a mean tension beyond sigma_0 is refused by name (no
+    state carries it); one within sigma_0 but beyond the pull-off (-2.8e-4 E, from adhesion_curve) cannot converge,
+    and the ConvergenceError says why. adhesion_curve refuses penetrations past full contact, as solve refuses one
+    (its steps there had failed one by one, leaving the path's scalars NaN)."""
+    h = contactlib.surfaces.self_affine(64, hurst=0.8, q_roll=1, q_cutoff=8, rms_slope=0.1, seed=0, dim=2)
+    rms = float(h.std())
+    law = Adhesion(work=0.01 * 0.3 * rms, range=0.3 * rms)
+    assert law.peak_stress == pytest.approx(0.01)
+    with pytest.raises(ValueError, match="mean_pressure .* peak stress"):
+        contactlib.solve(h, E=1.0, nu=0.5, mean_pressure=-0.011, adhesion=law)
+    curve = contactlib.adhesion_curve(h, E=1.0, nu=0.5, adhesion=law, penetrations=np.linspace(-0.5, 2.2, 12) * rms,
+                                      tol=1e-6)
+    assert curve.attrs["converged"] == 1 and -1e-3 < float(curve.pull_off_pressure) < -1e-4
+    with pytest.raises(contactlib.ConvergenceError, match="tension beyond the pull-off has no equilibrium"):
+        contactlib.solve(h, E=1.0, nu=0.5, mean_pressure=-0.002, adhesion=law, tol=1e-6)
+    with pytest.raises(ValueError, match="penetrations: .* reaches full contact"):
+        contactlib.adhesion_curve(h, E=1.0, nu=0.5, adhesion=law, penetrations=np.linspace(-0.5, 3.0, 15) * rms)
