@@ -260,8 +260,8 @@ class _Stepper:
         else:
             args["penetration"] = float(load) + shift
             if not compliance.definite and args["penetration"] >= effective.max() - effective.mean():
-                raise ValueError(f"penetration {load!r} reaches full contact on the deformed surface; in a periodic "
-                                 "window the load is then undetermined: give mean_pressure")
+                raise ValueError(f"penetration {float(load)!r} reaches full contact on the deformed surface; in a "
+                                 "periodic window the load is then undetermined: give mean_pressure")
         state = constrained_solve(compliance, effective, **args)
         if not state.converged:
             raise ConvergenceError(f"{state.solver} did not converge in {state.iterations} iterations: residual "
