@@ -35,6 +35,7 @@ from . import adhesive_contact
 from ._version import __version__
 from .adhesion import Adhesion
 from .contact import _setup, periodic_of
+from .inputs import check_below_full_contact
 from .labels import attrs_for
 from .materials import material_of
 
@@ -104,11 +105,10 @@ def adhesion_curve(
                    kernel=kernel, method="cg", length=length, initial_pressure=None, target_error=None, layer=layer,
                    friction=0.0, sliding_direction=None, sliding_velocity=None, adhesion=adhesion,
                    **({"mean_pressure": None, "penetration": None} | first))
-    closed = float(setup.values.max() - setup.values.mean())
-    if not load_control and not setup.body.compliance.definite and values.max() >= closed:
+    if not load_control and not setup.body.compliance.definite:
         # as solve refuses one such penetration (its steps failed one by one, the path's scalars NaN)
-        raise ValueError(f"penetrations: {float(values.max())!r} reaches full contact (max - mean height = {closed:.6g}); "
-                         "in a periodic window the load is then undetermined: stop below it, or give mean_pressures")
+        check_below_full_contact(float(values.max()), setup.values, "penetrations",
+                                 "stop below it, or give mean_pressures")
     start = time.perf_counter()
     if adhesion.model == "jkr":
         rows = _energy_path(setup, adhesion, path, load_control)

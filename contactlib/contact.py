@@ -18,8 +18,8 @@ from .materials import Elastic, Viscoelastic, contact_modulus, material_of
 from .bodies import BodyModel, Layer, body_model
 from .grid import Grid
 from .nonsymmetric import NonSymmetricSolve
-from .inputs import EDGE_TENSION, check_friction, check_iterations, check_loads, check_tolerance, check_velocity, \
-    edge_tension, grid_of, periodic_of, round_off_floor, touches_edge
+from .inputs import EDGE_TENSION, check_below_full_contact, check_friction, check_iterations, check_loads, \
+    check_tolerance, check_velocity, edge_tension, grid_of, periodic_of, real_values, round_off_floor, touches_edge
 from .operators import KERNELS
 from .solvers.coarse import PLATE_SET_FLOOR
 from .solvers import (ContactState, solve_active_set, solve_periodic_displacement, solve_polonsky_keer,
@@ -397,7 +397,7 @@ class _Setup(NonSymmetricSolve):
                        + (" (stalled: no progress over the last iterations; round-off floor or an ill-posed scene)"
                           if stalled else "")
                        + (f"; {self.attrs['monotone_message']}" if self.attrs.get("monotone") == 0 else "")
-                       + ("; under load control a tension beyond the pull-off has no equilibrium (contactlib."
+                       + ("; if this tension is beyond the pull-off, no equilibrium exists under load control (contactlib."
                           "adhesion_curve finds the pull-off; penetration control follows the branch past it)"
                           if self.adhesion is not None and (self.solver_args["mean_pressure"] or 0.0) < 0 else ""))
             ds.attrs["convergence_message"] = message  # the partial state says why it is partial
@@ -465,19 +465,15 @@ def _setup(heights, *, material, mean_pressure, penetration, periodic, tol, max_
     if initial_pressure is not None:
         if method != "cg":
             raise ValueError(f"initial_pressure: a warm start is for method='cg', got method={method!r}")
-        warm = np.asarray(initial_pressure, dtype=float)
+        warm = real_values(initial_pressure, "initial_pressure")
         if warm.shape != values.shape:
             raise ValueError(f"initial_pressure has shape {warm.shape}, heights {values.shape}")
         if not np.all(np.isfinite(warm)):
             raise ValueError("initial_pressure contains NaN or infinite values")
     body = body_model(grid, material=material, layer=layer, friction=float(friction),
                       direction=float(sliding_direction), tol=tol, kernel=kernel, periodic=periodic, velocity=velocity)
-    if not body.compliance.definite and penetration is not None and penetration >= values.max() - values.mean():
-        raise ValueError(
-            f"penetration {penetration!r} reaches full contact (max - mean height = "
-            f"{values.max() - values.mean():.6g}); in a periodic window the load is then undetermined: "
-            "give mean_pressure instead"
-        )
+    if not body.compliance.definite and penetration is not None:
+        check_below_full_contact(penetration, values)
     attrs = {"kernel": kernel, "periodic": int(periodic), "tol": tol, "max_iter": int(max_iter), "E": float(E),
              "nu": float(nu), "E_star": E_star,
              "load_control": "mean_pressure" if mean_pressure is not None else "penetration", **body.attrs}

@@ -104,6 +104,18 @@ def lengths_of(length, ndim: int) -> tuple[float, ...]:
     return lengths
 
 
+def check_below_full_contact(penetration: float, heights: np.ndarray, name: str = "penetration",
+                             remedy: str = "give mean_pressure instead") -> None:
+    """Refuse a ``penetration`` [length] that closes every gap of ``heights`` [length] on a body whose displacements
+    are zero-mean (a periodic half-space or plate: the approach is against the mean deformed plane, so full contact
+    comes at ``max - mean`` height): the load is then undetermined (:func:`contactlib.solve`,
+    :func:`contactlib.adhesion_curve`)."""
+    closed = float(heights.max() - heights.mean())
+    if penetration >= closed:
+        raise ValueError(f"{name} {float(penetration)!r} reaches full contact (max - mean height = {closed:.6g}); in a "
+                         f"periodic window the load is then undetermined: {remedy}")
+
+
 def check_tolerance(value, name: str) -> None:
     """A relative tolerance: a number in (0, 1) (at 1 or more the initial guess already meets it)."""
     if isinstance(value, bool) or not (isinstance(value, numbers.Real) and math.isfinite(value) and 0 < value < 1):

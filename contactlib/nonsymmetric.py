@@ -70,8 +70,8 @@ class NonSymmetricSolve:
         return (self.operator.periodic and self.solver_args["mean_pressure"] is not None
                 and not splitting.loss_dominated(self.body.factor))
 
-    def _krylov(self, first_try: bool = False, initial_pressure=None, budget: int = krylov.TRY_ITERATIONS,
-                set_cap: int = krylov.TRY_SET_ITERATIONS) -> ContactState:
+    def _krylov(self, first_try: bool = False, initial_pressure=None, budget: int | None = None,
+                set_cap: int | None = None) -> ContactState:
         """The semismooth Newton loop with GMRES on each contact set (:mod:`contactlib.solvers.krylov`), from the
         warm start or from the symmetric part's constrained CG stopped early. ``first_try`` (a loss-dominated
         body, Douglas-Rachford after it): within :data:`~contactlib.solvers.krylov.TRY_ITERATIONS` in all,
@@ -79,6 +79,8 @@ class NonSymmetricSolve:
         :data:`~contactlib.solvers.krylov.TRY_GROWTH` times its first set's (returned unconverged, with its
         residual); ``budget`` and ``set_cap``: its iterations in all and on one set (default the first try's),
         from ``initial_pressure`` when given (else the solve's own start)."""
+        budget = krylov.TRY_ITERATIONS if budget is None else budget
+        set_cap = krylov.TRY_SET_ITERATIONS if set_cap is None else set_cap
         args = self.solver_args
         if initial_pressure is not None:
             args = {**args, "initial_pressure": initial_pressure}

@@ -592,7 +592,7 @@ def test_tension_beyond_what_the_interface_carries():
     curve = contactlib.adhesion_curve(h, E=1.0, nu=0.5, adhesion=law, penetrations=np.linspace(-0.5, 2.2, 12) * rms,
                                       tol=1e-6)
     assert curve.attrs["converged"] == 1 and -1e-3 < float(curve.pull_off_pressure) < -1e-4
-    with pytest.raises(contactlib.ConvergenceError, match="tension beyond the pull-off has no equilibrium"):
+    with pytest.raises(contactlib.ConvergenceError, match="beyond the pull-off, no equilibrium exists under load"):
         contactlib.solve(h, E=1.0, nu=0.5, mean_pressure=-0.002, adhesion=law, tol=1e-6)
-    with pytest.raises(ValueError, match="penetrations: .* reaches full contact"):
+    with pytest.raises(ValueError, match="penetrations .* reaches full contact"):
         contactlib.adhesion_curve(h, E=1.0, nu=0.5, adhesion=law, penetrations=np.linspace(-0.5, 3.0, 15) * rms)

@@ -78,11 +78,15 @@ def test_non_finite_heights(heights, bad):
     lambda h: contactlib.solve(h.values.astype(complex), E=1.0, nu=0.3, mean_pressure=0.01),
     lambda h: contactlib.analysis.rms_slope(h.astype(complex)),
     lambda h: contactlib.analysis.contact_area_fraction(h.values + 0j),
+    lambda h: contactlib.analysis.rms_height(h.values + 0j),
+    lambda h: contactlib.analysis.directional_slope(h.values + 0j, lengths=1.0),
+    lambda h: contactlib.analysis.interlocking_friction(h.values + 0j, h.values, lengths=1.0),
+    lambda h: contactlib.solve(h, E=1.0, nu=0.3, mean_pressure=0.01, initial_pressure=np.ones(h.shape) + 0j),
 ])
 def test_complex_fields_are_refused(heights, call):
     """Complex heights or fields (a spectrum passed for the field) were read as their real part with numpy's
     ComplexWarning; now refused by name."""
-    with pytest.raises(ValueError, match="(heights|field|pressure) must be real"):
+    with pytest.raises(ValueError, match="(heights|field|pressure|initial_pressure) must be real"):
         call(heights)
 
 

@@ -243,3 +243,25 @@ def test_growth_monitor_stops_a_diverging_loop_only():
     assert monitor(6, 0.31, None) and monitor.diverged
     plain = Stall()
     assert not plain(1, 3e-2, None) and not plain(2, 1e3, None)
+
+
+@pytest.mark.parametrize("max_iter", [1000, 2000])
+def test_finish_is_not_tried_twice_from_one_iterate(monkeypatch, max_iter):
+    """``finish`` sees each iterate at most once: the last try, from the best iterate, is skipped when the loop
+    already tried that iterate (it had run the same failing Newton loop twice when the best came at 1000 or 2000)."""
+    from contactlib.solvers import splitting
+    from contactlib.solvers.state import ContactState
+
+    monkeypatch.setattr(splitting, "FINISH_BELOW", np.inf)
+    h = profile(256)
+    s = setup(h, GLASSY_1000, 0.5, (1e-2 / q0_of(h),))  # its best iterate of the first 1000 is the 1000th
+    seen = []
+
+    def finish(pressure):
+        seen.append(pressure.copy())
+        return ContactState(pressure, pressure, pressure, 0.0, 0.5, 7, 1.0, False, "stub")
+
+    state = solve_splitting(fourier_multiplier(s.body.compliance, s.body.coupling), s.values, mean_pressure=0.5,
+                            tol=1e-300, max_iter=max_iter, finish=finish)
+    assert not state.converged and state.iterations == max_iter + 7 * len(seen)
+    assert 1 <= len(seen) and all(not np.array_equal(a, b) for i, a in enumerate(seen) for b in seen[:i])

@@ -7,11 +7,13 @@ import contextvars
 
 import numpy as np
 
+from ..inputs import real_values
+
 
 def directional_slope(field: np.ndarray, *, lengths, direction: float = 0.0, periodic: bool = True) -> np.ndarray:
     """``d field / ds`` along ``s = (cos direction, sin direction)`` (1D: ``d/dx``) [field/length]:
     spectral for a periodic field, second-order central differences otherwise (exact on parabolas)."""
-    field = np.asarray(field, dtype=float)
+    field = real_values(field, "field")
     window = np.broadcast_to(np.asarray(lengths, dtype=float), (field.ndim,))
     if not np.all(np.isfinite(window) & (window > 0)):
         raise ValueError(f"lengths must be finite and > 0, got {lengths!r}")
@@ -46,7 +48,7 @@ def interlocking_friction(pressure, heights, *, lengths, direction: float = 0.0,
     edge singularities). Example: a cylinder ``h = -x^2/(2R)`` gives ``mu_a = x_c / R`` with ``x_c``
     the pressure's centroid, positive when the pressure leans to the leading side.
     """
-    p = np.asarray(pressure, dtype=float)
+    p = real_values(pressure, "pressure")
     total = float(p.sum())
     if total <= 0:
         return 0.0
@@ -76,7 +78,7 @@ def _cached_slope(heights, lengths, direction, periodic) -> np.ndarray:
     store = _SLOPES.get()
     if store is None:
         return directional_slope(heights, lengths=lengths, direction=direction, periodic=periodic)
-    heights = np.asarray(heights, dtype=float)
+    heights = real_values(heights, "heights")
     key = (tuple(np.broadcast_to(np.asarray(lengths, dtype=float), (heights.ndim,))), float(direction), bool(periodic))
     if store:
         stored, stored_key, slope = store[0]

@@ -52,7 +52,7 @@ def _half_spectrum_weights(grid: Grid) -> np.ndarray:
 
 def rms_height(field) -> float:
     """Root mean square of the field about its mean [field units]."""
-    values = np.asarray(field, dtype=float)
+    values = real_values(field, "field")
     return float(np.sqrt(np.mean((values - values.mean()) ** 2)))
 
 

@@ -128,7 +128,8 @@ def solve_splitting(
     tol : float
         Target of :func:`.contact_residual`.
     max_iter : int
-        Douglas-Rachford iterations (each one FFT pair) before returning unconverged.
+        Douglas-Rachford iterations (each one FFT pair) before returning unconverged; ``finish``'s own iterations
+        come on top of them.
     initial_pressure : ndarray, optional
         Warm start.
     finish : callable, optional
@@ -198,13 +199,15 @@ def solve_splitting(
     best, d, state_fields = np.inf, 0.0, None
     plain_next = None
     last_norm = np.inf
-    it, finish_at, finish_iterations = 0, FINISH_FIRST, 0
+    it, finish_at, finish_iterations, best_at, tried = 0, FINISH_FIRST, 0, 0, set()
 
     def finished(p, residual, it):
-        """``finish``'s converged state from ``p`` (residual ``residual`` after ``it`` iterations), or None."""
+        """``finish``'s converged state from ``p`` (residual ``residual``, the iterate of iteration ``it``), or None;
+        an iterate tried once is not tried again (the same deterministic failure)."""
         nonlocal finish_iterations
-        if finish is None or residual > FINISH_BELOW:
+        if finish is None or residual > FINISH_BELOW or it in tried:
             return None
+        tried.add(it)
         state = finish(p)
         finish_iterations += state.iterations
         if not state.converged:
@@ -230,7 +233,7 @@ def solve_splitting(
         if it % CHECK_EVERY == 0:
             fields = evaluate(p, d)
             if fields[3] < best:
-                best, state_fields = fields[3], (fields, d)
+                best, state_fields, best_at = fields[3], (fields, d), it
             if fields[3] <= tol:
                 break
             if it >= finish_at:
@@ -256,7 +259,7 @@ def solve_splitting(
         state_fields = (evaluate(np.maximum(z, 0.0), d), d)
     (p, u, gap, residual), d = state_fields
     if residual > tol:  # max_iter passed: a last try from the best iterate
-        done = finished(p, residual, it)
+        done = finished(p, residual, best_at)
         if done is not None:
             return done
     return ContactState(pressure=p, gap=gap, displacement=u, penetration=float(d), mean_pressure=float(p.mean()),
