@@ -397,8 +397,9 @@ class _Setup(NonSymmetricSolve):
                        + (" (stalled: no progress over the last iterations; round-off floor or an ill-posed scene)"
                           if stalled else "")
                        + (f"; {self.attrs['monotone_message']}" if self.attrs.get("monotone") == 0 else "")
-                       + ("; if this tension is beyond the pull-off, no equilibrium exists under load control (contactlib."
-                          "adhesion_curve finds the pull-off; penetration control follows the branch past it)"
+                       + ("; if this tension is beyond the pull-off, no equilibrium exists under load control "
+                          "(contactlib.adhesion_curve finds the pull-off; penetration control follows the branch "
+                          "past it)"
                           if self.adhesion is not None and (self.solver_args["mean_pressure"] or 0.0) < 0 else ""))
             ds.attrs["convergence_message"] = message  # the partial state says why it is partial
             raise ConvergenceError(message, residual=state.residual, dataset=ds)
