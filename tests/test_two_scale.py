@@ -894,3 +894,21 @@ def test_heights_edited_after_the_table_are_refused():
     with pytest.raises(ValueError, match="n must be a whole number"):
         contactlib.two_scale.solve(h, E=1.0, nu=0.5, mean_pressure=1e-4, n=64.7)
     assert contactlib.two_scale.solve(h, E=1.0, nu=0.5, mean_pressure=1e-4).attrs["converged"] == 1
+
+
+def test_unconverged_steps_say_why():
+    """Where an iteration fails on a scene past the method's reach, the ConvergenceError says which reach: a nearly
+    touching field (coverage 0.5) pressed to 0.95 of its summit height, whose macro Newton iterate wanders past
+    separate caps (an asperity pressed 3.6x its summit height); contacts a seventh of the grid spacing under load
+    control, where the micro step's outer iteration does not settle."""
+    field = ts.random_asperity_field(100, coverage=0.5, nodes_per_spacing=16, height_scatter=0.0, seed=0)
+    z = float(np.mean(ts.asperity_table(field).summit_height))
+    with pytest.raises(contactlib.ConvergenceError, match="past the method's assumption .* no longer separate caps"):
+        ts.solve(field, E=1.0, nu=0.5, penetration=float(field.max()) - 0.05 * z, scale="macro", fields=False)
+    field = ts.random_asperity_field(10, coverage=0.05, nodes_per_spacing=16, height_scatter=0.0, seed=0)
+    z = float(np.mean(ts.asperity_table(field).summit_height))
+    approach = float(field.max()) - 0.99 * z
+    load = float(ts.solve(field, E=1.0, nu=0.5, penetration=approach, scale="macro", fields=False).mean_pressure)
+    assert ts.solve(field, E=1.0, nu=0.5, penetration=approach).attrs["converged"] == 1
+    with pytest.raises(contactlib.ConvergenceError, match="the micro scale does not resolve the contacts"):
+        ts.solve(field, E=1.0, nu=0.5, mean_pressure=load, max_iter=50)
