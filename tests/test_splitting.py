@@ -1,6 +1,8 @@
 """Douglas-Rachford on the complex Fourier multiplier: the loss-dominated viscoelastic cases the fixed point on
 the skew part cannot solve, checked against the real-space kernel and against the coupled solver where both work."""
 
+import dataclasses
+
 import numpy as np
 import pytest
 
@@ -265,3 +267,19 @@ def test_finish_is_not_tried_twice_from_one_iterate(monkeypatch, max_iter):
                             tol=1e-300, max_iter=max_iter, finish=finish)
     assert not state.converged and state.iterations == max_iter + 7 * len(seen)
     assert 1 <= len(seen) and all(not np.array_equal(a, b) for i, a in enumerate(seen) for b in seen[:i])
+
+
+def test_a_finish_from_the_best_iterate_counts_every_iteration(monkeypatch):
+    """The last try of ``finish`` starts from the best iterate, which may be far behind the last one: the iterations
+    reported are all those run (they had counted up to the best iterate only)."""
+    from contactlib.solvers import splitting
+
+    monkeypatch.setattr(splitting, "FINISH_BELOW", np.inf)
+    monkeypatch.setattr(splitting, "FINISH_FIRST", 10**9)  # no try in the loop: only the last one
+    h = profile(256)
+    s = setup(h, GLASSY_1000, 0.5, (1e-2 / q0_of(h),))
+    multiplier = fourier_multiplier(s.body.compliance, s.body.coupling)
+    converged = solve_splitting(multiplier, s.values, mean_pressure=0.5, tol=1e-8)
+    finished = solve_splitting(multiplier, s.values, mean_pressure=0.5, tol=1e-300, max_iter=3000,
+                               finish=lambda p: dataclasses.replace(converged, iterations=5))
+    assert finished.converged and finished.iterations == 3000 + 5  # its best iterate is the 2770th

@@ -201,18 +201,18 @@ def solve_splitting(
     last_norm = np.inf
     it, finish_at, finish_iterations, best_at, tried = 0, FINISH_FIRST, 0, 0, set()
 
-    def finished(p, residual, it):
-        """``finish``'s converged state from ``p`` (residual ``residual``, the iterate of iteration ``it``), or None;
-        an iterate tried once is not tried again (the same deterministic failure)."""
+    def finished(p, residual, of, done):
+        """``finish``'s converged state from ``p`` (residual ``residual``, the iterate of iteration ``of``, after
+        ``done`` iterations), or None; an iterate tried once is not tried again (the same deterministic failure)."""
         nonlocal finish_iterations
-        if finish is None or residual > FINISH_BELOW or it in tried:
+        if finish is None or residual > FINISH_BELOW or of in tried:
             return None
-        tried.add(it)
+        tried.add(of)
         state = finish(p)
         finish_iterations += state.iterations
         if not state.converged:
             return None
-        return dataclasses.replace(state, iterations=it + finish_iterations,
+        return dataclasses.replace(state, iterations=done + finish_iterations,
                                    solver=f"douglas-rachford+{state.solver}")
 
     for it in range(1, max_iter + 1):
@@ -238,7 +238,7 @@ def solve_splitting(
                 break
             if it >= finish_at:
                 finish_at *= 2
-                done = finished(fields[0], fields[3], it)
+                done = finished(fields[0], fields[3], it, it)
                 if done is not None:
                     return done
         if it % BALANCE_EVERY == 0 and it <= BALANCE_UNTIL:
@@ -259,7 +259,7 @@ def solve_splitting(
         state_fields = (evaluate(np.maximum(z, 0.0), d), d)
     (p, u, gap, residual), d = state_fields
     if residual > tol:  # max_iter passed: a last try from the best iterate
-        done = finished(p, residual, best_at)
+        done = finished(p, residual, best_at, it)
         if done is not None:
             return done
     return ContactState(pressure=p, gap=gap, displacement=u, penetration=float(d), mean_pressure=float(p.mean()),
