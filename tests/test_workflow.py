@@ -132,9 +132,11 @@ def test_tiny_end_to_end_run_and_report(workdir):
         for name in list(ds.data_vars) + list(ds.coords):
             assert ds[name].attrs.get("units") and ds[name].attrs.get("long_name"), name
         assert float(ds.two_scale_asperity_force_error.max()) < 1e-2 and (ds.macro_time > 0).all()
+        assert float(ds.residual.max()) <= 1e-8  # the reference solve's (it was left NaN)
     with xr.open_dataset(results / "two_scale_transient.nc") as ds:
         assert (ds.status == 0).all() and ds.two_scale_creep_force_error.dims == (
             "count", "coverage", "glassy_ratio", "seed", "time")
+        assert float(ds.residual.max()) <= 1e-8  # the reference's largest step residual (it was left NaN)
         for name in list(ds.data_vars) + list(ds.coords):
             assert ds[name].attrs.get("units") and ds[name].attrs.get("long_name"), name
         # the body creeps (the approach grows) and the two-scale steps follow the full solver's within 1 %
@@ -143,6 +145,7 @@ def test_tiny_end_to_end_run_and_report(workdir):
         assert float(ds.macro_creep_force_error.max()) < 5e-2 and (ds.macro_creep_time > 0).all()
     with xr.open_dataset(results / "fig4_adhesive_layers.nc") as ds:
         assert (ds.status == 0).all() and ds.scaled_penetration.attrs["long_name"] == "penetration Delta / Lambda"
+        assert float(ds.residual.max()) == 0.0  # JKR's energy balance: each state exact (it was left NaN)
         one = ds.isel(scaled_penetration=0, branch=0)
         # the paper's trends: a thin confined layer pulls off harder; a thin remote-pressure layer holds no
         # partial contact under a compressive load (jumps to full contact), a thick one does
@@ -153,6 +156,7 @@ def test_tiny_end_to_end_run_and_report(workdir):
     with xr.open_dataset(results / "adhesive_rough.nc") as ds:
         assert dict(ds.sizes) == {"rms_slope": 2, "work": 2, "seed": 1, "penetration_over_rms": 3, "branch": 2}
         assert (ds.status == 0).all() and (ds.converged == 1).all()
+        assert float(ds.residual.max()) <= 1e-6  # each state's own (it was left NaN)
         for name in list(ds.data_vars) + list(ds.coords):
             assert ds[name].attrs.get("units") and ds[name].attrs.get("long_name"), name
         pull = ds.reduced_pull_off_pressure.isel(penetration_over_rms=0, branch=0, seed=0)

@@ -82,6 +82,7 @@ def adhesive_rough_point(*, rms_slope: float, work: float, seed: int, penetratio
         "contact_area": float(ds.contact_area[k]),
         "interaction_area": float(ds.interaction_area[k]),
         "converged": float(ds.converged[k]),
+        "residual": float(ds.residual[k]),  # the state's own (NaN where its step failed)
         "reduced_pull_off_pressure": float(ds.pull_off_pressure) / scale,
         "pull_off_penetration_over_rms": float(ds.pull_off_penetration) / rms_height,
         "hysteresis_energy": float(ds.hysteresis_energy),

@@ -82,6 +82,7 @@ def adhesive_layer_point(*, layer_base: str, scaled_layer_thickness: float, scal
         "scaled_mean_pressure": float(ds.mean_pressure[k]) * scale,
         "contact_area": float(ds.contact_area[k]),
         "jump": float(ds.jump[k]),
+        "residual": float(ds.residual[k]),
         "full_contact": float(float(ds.contact_area[k]) >= 1 - 1.5 / n),
         "scaled_pull_off_pressure": float(ds.pull_off_pressure) * scale,
         "scaled_pull_off_penetration": float(ds.pull_off_penetration) / amplitude,

@@ -92,6 +92,7 @@ def creep_point(*, count: int, coverage: float, glassy_ratio: float, seed: int, 
 
     largest = ref_forces.max(axis=1)
     row = {"n": float(field.shape[0]), "step_mean_pressure": load,
+           "residual": float(reference.residual.max()),  # the reference's largest: errors are measured against it
            "in_contact_first": float(np.count_nonzero(ref_forces[0])),
            "in_contact_last": float(np.count_nonzero(ref_forces[-1])),
            "reference_creep_penetration": series(reference.penetration, "reference_creep_penetration"),
