@@ -118,24 +118,54 @@ def adhesion_curve(
     return _label(setup, adhesion, rows, unloading, load_control, wall, length_unit, pressure_unit)
 
 
+BISECTIONS = 3
+"""A step of a penetration-controlled path that no start converges is approached through midpoints of its increment,
+each warm-started from the last, this many halvings deep at most. On a 64^2 rough surface of the quick workflow
+(exponential law, range 1.3 rms heights) the step from 0 to 0.5 rms heights failed from every start (residual
+5.3e-3) and converged through 0.25."""
+
+
+def _cohesive_step(setup, adhesion, args, warm, warm_d):
+    """The converged state at ``args``' load or penetration from the warm start ``(warm, warm_d)``, then the
+    non-adhesive state, then the open one (a jump lands on either); ``(None, smallest residual)`` if none."""
+    closest = math.nan
+    for attempt in (warm, None, np.zeros_like(setup.values)):
+        setup.solver_args = dict(args, initial_pressure=attempt)
+        try:
+            candidate = adhesive_contact.run(setup, adhesion, warm_penetration=warm_d if attempt is not None
+                                             else None)
+        except (ValueError, np.linalg.LinAlgError, FloatingPointError):
+            continue
+        if candidate.converged:
+            return candidate, closest
+        closest = float(np.fmin(closest, candidate.residual))
+    return None, closest
+
+
+def _bisected_step(setup, adhesion, args, warm, warm_d, value, depth=BISECTIONS):
+    """The state at penetration ``value`` reached through the midpoint of the increment from ``warm_d`` (halved
+    again where the midpoint fails, ``depth`` times at most); None where no midpoint leads there."""
+    if depth == 0 or warm is None or warm_d is None:
+        return None
+    middle = 0.5 * (warm_d + value)
+    state, _ = _cohesive_step(setup, adhesion, dict(args, penetration=middle), warm, warm_d)
+    if state is None:
+        state = _bisected_step(setup, adhesion, args, warm, warm_d, middle, depth - 1)
+    if state is None:
+        return None
+    done, _ = _cohesive_step(setup, adhesion, args, state.pressure, state.penetration)
+    return done if done is not None else _bisected_step(setup, adhesion, args, state.pressure, state.penetration,
+                                                        value, depth - 1)
+
+
 def _cohesive_path(setup, adhesion, path, load_control):
     rows, warm, warm_d, area_before = [], None, None, 0.0
     for value in path:
         args = dict(setup.solver_args, mean_pressure=None, penetration=None)
         args["mean_pressure" if load_control else "penetration"] = float(value)
-        state, closest = None, math.nan
-        # warm start, then the non-adhesive state, then the open one (a jump lands on either)
-        for attempt in (warm, None, np.zeros_like(setup.values)):
-            setup.solver_args = dict(args, initial_pressure=attempt)
-            try:
-                candidate = adhesive_contact.run(setup, adhesion, warm_penetration=warm_d if attempt is not None
-                                                 else None)
-            except (ValueError, np.linalg.LinAlgError, FloatingPointError):
-                continue
-            if candidate.converged:
-                state = candidate
-                break
-            closest = float(np.fmin(closest, candidate.residual))
+        state, closest = _cohesive_step(setup, adhesion, args, warm, warm_d)
+        if state is None and not load_control:
+            state = _bisected_step(setup, adhesion, args, warm, warm_d, float(value))
         if state is not None:
             setup.check_window(state.pressure)  # a window that cuts the contact or its cohesive zone: refused
         if state is None:

@@ -596,3 +596,25 @@ def test_tension_beyond_what_the_interface_carries():
         contactlib.solve(h, E=1.0, nu=0.5, mean_pressure=-0.002, adhesion=law, tol=1e-6)
     with pytest.raises(ValueError, match="penetrations .* reaches full contact"):
         contactlib.adhesion_curve(h, E=1.0, nu=0.5, adhesion=law, penetrations=np.linspace(-0.5, 3.0, 15) * rms)
+
+
+def test_a_step_no_start_converges_is_reached_through_midpoints():
+    """A 64^2 surface of the quick workflow's adhesive_rough study (exponential law, range 1.3 rms heights): the
+    loading step from 0 to 0.5 rms heights failed from the warm, the non-adhesive and the open start (residual
+    5.3e-3), leaving a hole in the path and NaN pull-off scalars. Through the midpoint 0.25 it converges; on the
+    loading branch it holds less contact and less tension than on the unloading branch at the same penetration."""
+    from contactlib.materials import contact_modulus
+    from contactlib.studies._common import rough_surface
+    from contactlib.studies.adhesive_rough import cohesive_law
+
+    h = rough_surface(n=64, hurst=0.8, seed=0, q_low=1.0, q_roll=2.0, q_cutoff=16.0, rms_slope=0.05)
+    rms = float(h.std())
+    law = cohesive_law(2e-4, E_star=contact_modulus(1.0, 0.5), spacing=1 / 64, process_zone_elements=3.0)
+    full = contactlib.adhesion_curve(h, E=1.0, nu=0.5, adhesion=law, penetrations=np.array([-0.5, 0.0, 0.5, 1.0]) * rms,
+                                     tol=1e-6)
+    assert full.attrs["converged"] == 1 and (full.converged == 1).all() and float(full.residual.max()) <= 1e-6
+    loading, unloading = full.isel(step=2), full.isel(step=4)  # 0.5 rms heights on the way in and out
+    assert float(unloading.penetration) == pytest.approx(float(loading.penetration))
+    assert float(loading.contact_area) < float(unloading.contact_area)
+    assert float(loading.mean_pressure) > float(unloading.mean_pressure)
+    assert np.isfinite(float(full.pull_off_pressure))
