@@ -313,8 +313,14 @@ class _Anderson:
         if not self.dF:
             return Tz
         rhs = np.array([_dot(d, f) for d in self.dF])
-        ridge = 1e-10 * np.trace(self.gram) * np.eye(len(rhs))
-        coefficients = np.linalg.solve(self.gram + ridge, rhs)
+        scale = float(np.trace(self.gram))
+        try:
+            if not (np.isfinite(scale) and scale > 0):  # no change left to mix (the iterate stands still)
+                raise np.linalg.LinAlgError("no differences")
+            coefficients = np.linalg.solve(self.gram + 1e-10 * scale * np.eye(len(rhs)), rhs)
+        except np.linalg.LinAlgError:  # degenerate differences: the plain step, and a fresh memory
+            self.reset()
+            return Tz
         out = Tz.copy()
         for c, dT in zip(coefficients, self.dT):
             out -= c * dT
