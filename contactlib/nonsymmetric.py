@@ -49,7 +49,7 @@ class NonSymmetricSolve:
             if first.converged:
                 return first
         if self.operator.periodic and splitting.loss_dominated(self.body.factor):
-            if first is None and self.solver_args["mean_pressure"] is not None and self.operator.preconditionable:
+            if first is None and self._finishable():
                 first = self._krylov(first_try=True)  # cheap where it converges, bounded where it diverges
                 if first.converged:
                     return first
