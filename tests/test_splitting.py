@@ -313,3 +313,15 @@ def test_anderson_mixing_with_no_change_takes_the_plain_step():
     f, Tz = np.ones(8), np.arange(8.0)
     assert np.array_equal(mixer.next(Tz, f), Tz)
     assert np.array_equal(mixer.next(Tz + 1.0, f), Tz + 1.0) and not mixer.active
+
+
+def test_coupled_anderson_mixing_with_no_change_takes_the_plain_step():
+    """The fixed point's Anderson mixing, as Douglas-Rachford's: a zero Gram matrix (an iterate that stands still)
+    gives the plain step instead of numpy's LinAlgError."""
+    from contactlib.solvers.coupled import _Anderson
+
+    mixer = _Anderson(3)
+    y, f, Wy = np.arange(8.0), np.ones(8), np.zeros(8)
+    mixer.next(y, f, Wy)
+    x, Wx = mixer.next(y + 1.0, f, Wy)
+    assert np.array_equal(x, y + 1.0) and np.array_equal(Wx, Wy) and not mixer.diffs

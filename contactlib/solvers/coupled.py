@@ -160,8 +160,14 @@ class _Anderson:
             return x, Wx
         rhs = np.array([dot(d[1], f) for d in self.diffs])
         # a relative ridge keeps the normal equations solvable when differences become parallel
-        ridge = 1e-12 * np.trace(self.gram) * np.eye(len(rhs))
-        gamma = np.linalg.solve(self.gram + ridge, rhs)
+        scale = float(np.trace(self.gram))
+        try:
+            if not (np.isfinite(scale) and scale > 0):  # no change left to mix (the iterate stands still)
+                raise np.linalg.LinAlgError("no differences")
+            gamma = np.linalg.solve(self.gram + 1e-12 * scale * np.eye(len(rhs)), rhs)
+        except np.linalg.LinAlgError:  # degenerate differences: the plain step, and a fresh memory (as splitting's)
+            self.diffs, self.gram = [], np.zeros((0, 0))
+            return x, Wx
         for g, (dy, _, dWy) in zip(gamma, self.diffs):
             x -= g * dy
             Wx -= g * dWy
