@@ -287,3 +287,14 @@ def test_surfacetopography_file_without_size_needs_length(tmp_path, surface):
     out = read(path, length=LENGTH, unit="m", periodic=True, detrend="none")
     assert_same_surface(out, surface)
     assert out.attrs["source_format"] == "h5"
+
+
+def test_a_trend_the_finite_heights_do_not_determine_is_refused(tmp_path):
+    """A map whose finite heights lie on one row (the rest missing, filled): the plane fit's normal equations were
+    singular and numpy's LinAlgError escaped; now refused naming ``detrend``. The mean still works."""
+    heights = np.full((16, 16), np.nan)
+    heights[3, :] = np.linspace(0.0, 1e-6, 16)
+    path = _save(tmp_path / "row.npy", heights)
+    with pytest.raises(ValueError, match="detrend='plane': the 16 finite heights do not determine a plane"):
+        read(path, length=1e-4, unit="m", fill="mean", detrend="plane")
+    assert read(path, length=1e-4, unit="m", fill="mean", detrend="mean").attrs["detrend"] == "mean"

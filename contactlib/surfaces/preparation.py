@@ -48,7 +48,12 @@ def remove_trend(heights: np.ndarray, mode: str, spacing: tuple[float, ...]) -> 
     columns = [np.ones(heights.shape)] + [np.broadcast_to(a.reshape((-1,) + (1,) * (heights.ndim - 1 - k)),
                                                          heights.shape) for k, a in enumerate(axes)]
     design = np.stack([c[valid] for c in columns], axis=1)
-    coefficients = np.linalg.solve(design.T @ design, design.T @ heights[valid])
+    normal = design.T @ design
+    if np.linalg.matrix_rank(normal) < normal.shape[0]:  # e.g. the finite points on one line of a map
+        raise ValueError(f"detrend={mode!r}: the {int(valid.sum())} finite heights do not determine a "
+                         f"{'plane' if heights.ndim == 2 else 'line'} (too few, or all on one line); use "
+                         "detrend='mean'")
+    coefficients = np.linalg.solve(normal, design.T @ heights[valid])
     trend = sum(c * column for c, column in zip(coefficients, columns))
     record = {"detrend": "plane" if heights.ndim == 2 else "line", "detrend_offset": float(coefficients[0])}
     for name, c, d in zip("xy", coefficients[1:], spacing):
