@@ -37,7 +37,7 @@ from collections.abc import Callable
 
 import numpy as np
 
-from .state import ContactState, contact_residual, dot, height_scale
+from .state import ContactState, contact_residual, dot, height_scale, mixing_coefficients
 
 ANDERSON_MEMORY = 8
 """Past iterates kept by the Anderson mixing (each three fields: pressure, residual, ``W`` pressure)."""
@@ -158,14 +158,8 @@ class _Anderson:
         x, Wx = y.copy(), Wy.copy()
         if not self.diffs:
             return x, Wx
-        rhs = np.array([dot(d[1], f) for d in self.diffs])
-        # a relative ridge keeps the normal equations solvable when differences become parallel
-        scale = float(np.trace(self.gram))
-        try:
-            if not (np.isfinite(scale) and scale > 0):  # no change left to mix (the iterate stands still)
-                raise np.linalg.LinAlgError("no differences")
-            gamma = np.linalg.solve(self.gram + 1e-12 * scale * np.eye(len(rhs)), rhs)
-        except np.linalg.LinAlgError:  # degenerate differences: the plain step, and a fresh memory (as splitting's)
+        gamma = mixing_coefficients(self.gram, np.array([dot(d[1], f) for d in self.diffs]), 1e-12)
+        if gamma is None:  # degenerate differences: the plain step, and a fresh memory
             self.diffs, self.gram = [], np.zeros((0, 0))
             return x, Wx
         for g, (dy, _, dWy) in zip(gamma, self.diffs):

@@ -44,7 +44,7 @@ import numpy as np
 
 from .. import fft
 from ..kernels.viscoelastic import real_where_self_conjugate
-from .state import ContactState, contact_residual, height_scale
+from .state import ContactState, contact_residual, height_scale, mixing_coefficients
 
 BALANCE_FACTOR = 10.0
 """``gamma = BALANCE_FACTOR |p| / |g|``: measured best within 3x on E_inf/E0 = 1000, V tau q0 = 1e-3, 1e-2."""
@@ -312,13 +312,8 @@ class _Anderson:
         self.last = (Tz, f)
         if not self.dF:
             return Tz
-        rhs = np.array([_dot(d, f) for d in self.dF])
-        scale = float(np.trace(self.gram))
-        try:
-            if not (np.isfinite(scale) and scale > 0):  # no change left to mix (the iterate stands still)
-                raise np.linalg.LinAlgError("no differences")
-            coefficients = np.linalg.solve(self.gram + 1e-10 * scale * np.eye(len(rhs)), rhs)
-        except np.linalg.LinAlgError:  # degenerate differences: the plain step, and a fresh memory
+        coefficients = mixing_coefficients(self.gram, np.array([_dot(d, f) for d in self.dF]), 1e-10)
+        if coefficients is None:  # degenerate differences: the plain step, and a fresh memory
             self.reset()
             return Tz
         out = Tz.copy()
