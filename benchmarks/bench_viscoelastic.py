@@ -13,6 +13,11 @@ number to ``--json``:
    (``path``) and with (``recycle``) the GMRES vectors carried across solves (:mod:`contactlib.solvers.recycle`),
    and each cold (as the ``friction_speed`` study does), over one elastic solve; GMRES iterations and
    contact-set updates in all.
+3. **floor** (``--floor``, with the ``path`` walk): what the elastic solver itself would take from starts as far
+   off as the path's. At each speed after the first, the elastic solve (E0) starts from its own answer moved by
+   the path's start error there (the prediction minus that speed's answer, scaled to the elastic pressure's
+   norm, clipped at zero); the first speed counts one cold elastic solve. Their total time over one cold
+   elastic solve is the sweep ratio an elastic-speed solver would reach on this walk's starts.
 
 Run ``python benchmarks/bench_viscoelastic.py --help``.
 """
@@ -63,6 +68,31 @@ def timed(fn, repeats: int):
     return statistics.median(times), out
 
 
+def elastic_floor(h, p: float, zetas, answers: list, tol: float, elastic_s: float) -> dict:
+    """The elastic solver (E0) from starts as far off as the path walk's (see the module docstring, 3.), its
+    iterations and time per speed; printed as a table, returned for ``--json``."""
+    cold = contactlib.solve(h, E=1.0, nu=0.5, mean_pressure=p, tol=tol)
+    elastic = cold.pressure.values
+    scale = np.linalg.norm(elastic)
+    rows, total_s, total_its = [], elastic_s, int(cold.iterations)  # the first speed: one cold solve
+    print("\n| zeta | path start error (relative L2) | elastic iterations from as far off (cold: "
+          f"{int(cold.iterations)}) | elastic time [s] |\n|---|---|---|---|")
+    for k in range(1, len(answers)):
+        error = contactlib.predict_pressure(list(zetas[:k]), answers[:k], zetas[k]) - answers[k]
+        norm = np.linalg.norm(answers[k])
+        start = np.clip(elastic + error * (scale / norm), 0.0, None)
+        t, out = timed(lambda: contactlib.solve(h, E=1.0, nu=0.5, mean_pressure=p, tol=tol, initial_pressure=start), 1)
+        rows.append({"zeta": float(zetas[k]), "start_error": float(np.linalg.norm(error) / norm),
+                     "iterations": int(out.iterations), "elastic_s": t})
+        total_s += t
+        total_its += int(out.iterations)
+        print(f"| {zetas[k]:.3g} | {rows[-1]['start_error']:.3f} | {rows[-1]['iterations']} | {t:.3f} |")
+    print(f"\n# elastic floor: {total_its} elastic iterations over the sweep ({int(cold.iterations)} cold), "
+          f"{total_s:.2f} s = {total_s / elastic_s:.1f}x one elastic solve ({elastic_s:.3f} s)")
+    return {"speeds": rows, "iterations": total_its, "cold_iterations": int(cold.iterations), "s": total_s,
+            "ratio": total_s / elastic_s}
+
+
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--sizes", type=int, nargs="+", default=[512, 1024])
@@ -77,8 +107,12 @@ def main(argv=None) -> int:
                     choices=["warm", "path", "recycle", "cold"],
                     help="sweep walks: from the last speed's pressure, from contactlib.solve_speeds' prediction "
                          "(without, with the carried Krylov vectors), from scratch")
+    ap.add_argument("--floor", action="store_true",
+                    help="with the path walk: the elastic solver from starts as far off as the path's")
     ap.add_argument("--json", type=Path)
     args = ap.parse_args(argv)
+    if args.floor and "path" not in args.walks:
+        ap.error("--floor needs the path walk (--walks path)")
     material = contactlib.Viscoelastic.standard_linear_solid(E0=1.0, E_inf=args.ratio, tau=1.0, nu=0.5)
     info = host_info()
     print(f"# steady viscoelastic sliding against elastic ({info.get('cpu', '?')}, contactlib {contactlib.__version__})")
@@ -128,7 +162,7 @@ def main(argv=None) -> int:
             elastic_cpu.append(time.process_time() - c0)
 
     time_elastic()
-    walks, cpu = {}, {}
+    walks, cpu, paths = {}, {}, {}
     velocities = [(zeta / (2 * np.pi), 0.0) for zeta in zetas]
     for walk in args.walks:  # warm: from the last speed's pressure; path: predicted; cold: each from scratch
         t0, c0, warm, outs = time.perf_counter(), time.process_time(), None, []
@@ -140,6 +174,7 @@ def main(argv=None) -> int:
                                    tol=args.tol, initial_pressure=warm)
             warm = out.pressure.values if walk == "warm" else None
             outs.append(out)
+        paths[walk] = outs
         walks[walk] = (time.perf_counter() - t0, sum(int(out.iterations) for out in outs),
                        sum(int(out.get("outer_iterations", 0)) for out in outs))
         cpu[walk] = time.process_time() - c0
@@ -156,6 +191,8 @@ def main(argv=None) -> int:
               f"contact: {t:.2f} s = {t / t_el:.1f}x one elastic solve ({t_el:.3f} s), {its} iterations, "
               f"{updates} set updates; CPU time {cpu[walk]:.2f} s = {cpu[walk] / c_el:.1f}x ({c_el:.3f} s) "
               f"(load {os.getloadavg()[0]:.1f})")
+    if args.floor:
+        sweep["floor"] = elastic_floor(h, p, zetas, [out.pressure.values for out in paths["path"]], args.tol, t_el)
     if args.json:
         args.json.write_text(json.dumps({"host": info, "steady": rows, "sweep": sweep}, indent=1))
     return 0
