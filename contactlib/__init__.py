@@ -20,9 +20,10 @@ from .grid import Grid
 from .materials import Elastic, Viscoelastic
 from .reciprocating import solve_reciprocating
 from .speed_path import predict_pressure, solve_speeds
-from .transient import TransientInterrupted, solve_transient
+from .transient import TimeStepWarning, TransientInterrupted, solve_transient
 
 __all__ = ["solve", "Adhesion", "adhesion_curve", "solve_transient", "solve_reciprocating", "TransientInterrupted",
+           "TimeStepWarning",
            "solve_speeds", "predict_pressure",
            "Layer", "Elastic", "Viscoelastic", "solve_tolerances", "ConvergenceError", "Grid", "surfaces", "analysis",
            "reference", "accuracy", "two_scale", "__version__"]

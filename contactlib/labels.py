@@ -61,6 +61,8 @@ VARIABLES: dict[str, dict[str, str]] = {
     "friction_work": {"units": "{pressure} {length}",
                       "long_name": "work of the tangential force per unit area over the cycle (loop area)"},
     "cycle_change": {"units": "1", "long_name": "relative change from the previous cycle"},
+    "energy_balance": {"units": "1", "long_name": "friction work minus dissipated energy over the cycle's absolute "
+                                                 "work"},
     "wavenumber": {"units": "rad {length}-1", "long_name": "wavenumber |q|"},
     "psd": {"units": "{length}4", "long_name": "radially averaged power spectral density"},
     "psd_1d": {"units": "{length}3", "long_name": "power spectral density of a profile"},

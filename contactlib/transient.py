@@ -20,6 +20,7 @@ from __future__ import annotations
 import logging
 import math
 import time as _time
+import warnings
 from collections.abc import Callable
 
 import numpy as np
@@ -39,6 +40,19 @@ log = logging.getLogger(__name__)
 
 INITIAL_STATES = ("unloaded", "relaxed")
 MODELS_KEPT = 3
+
+SLIDE_PER_STEP = 1.0
+"""The largest slide of the rigid surface over one step, in grid spacings along each axis, before a
+viscoelastic run warns (:class:`TimeStepWarning`). A step takes the pressure rate as constant at each point
+of the body, so a surface that moves several spacings in a step smears its features' passage. A 256-point
+rough profile reciprocated over 0.3 of its window (E_inf/E0 = 10, f tau = 1e-3) dissipates 41 % too little per
+cycle at 7.5 spacings a step and 12 % at 3.8; 1.9 % at 1.9 and 0.2 % at 0.94, with the friction work then
+within 1 % of it. On 512 points the same slides err by less (2.8 % at 3.8, 0.02 % at 0.94)."""
+
+
+class TimeStepWarning(UserWarning):
+    """A viscoelastic run's steps slide the rigid surface by more than :data:`SLIDE_PER_STEP` grid spacings:
+    the dissipated energy, the friction and the contact's history lose accuracy (more steps, a shorter path)."""
 
 
 class TransientInterrupted(KeyboardInterrupt):
@@ -130,6 +144,11 @@ def solve_transient(
     stepper, times, loads, positions, control = _prepare(
         heights, times=times, material=material_of(material, E, nu), mean_pressure=mean_pressure,
         penetration=penetration, path=path, layer=layer, periodic=periodic, tol=tol, max_iter=max_iter, length=length)
+    slide = slide_per_step(positions, stepper.grid.spacing)
+    if slide > SLIDE_PER_STEP and not isinstance(stepper.material, Elastic):
+        warnings.warn(f"path: the surface slides up to {slide:.3g} grid spacings in one step (times), more than "
+                      f"{SLIDE_PER_STEP:g}: the dissipated power and friction lose accuracy (take more times)",
+                      TimeStepWarning, stacklevel=2)
     if initial not in INITIAL_STATES:
         raise ValueError(f"initial must be one of {INITIAL_STATES}, got {initial!r}")
     if log_every is not None:
@@ -371,6 +390,14 @@ def _prepare(heights, *, times, material, mean_pressure, penetration, path, laye
     return stepper, times, loads, positions, control
 
 
+def slide_per_step(positions: np.ndarray, spacing) -> float:
+    """The largest slide between consecutive positions ``(n, dim)`` [length], in grid spacings ``spacing``
+    [length] along each axis (0 without a step)."""
+    if len(positions) < 2:
+        return 0.0
+    return float(np.max(np.abs(np.diff(positions, axis=0)) / np.asarray(spacing, dtype=float)[: positions.shape[1]]))
+
+
 def _times(times) -> np.ndarray:
     """The instants as a finite, strictly increasing 1D array."""
     times = np.asarray(times, dtype=float)
@@ -439,4 +466,4 @@ def _saved_steps(save_fields, times: np.ndarray) -> np.ndarray:
     return keep
 
 
-__all__ = ["solve_transient", "solve_reciprocating", "TransientInterrupted"]
+__all__ = ["solve_transient", "TransientInterrupted", "TimeStepWarning", "slide_per_step"]

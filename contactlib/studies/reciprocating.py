@@ -21,6 +21,8 @@ VARIABLES: dict[str, dict[str, str]] = {
     "phase": {"units": "1", "long_name": "fraction of the cycle"},
     "dissipated_energy_per_cycle": {"units": "Pa m", "long_name": "energy dissipated per unit area per cycle"},
     "friction_work_per_cycle": {"units": "Pa m", "long_name": "loop area: work of the tangential force per cycle"},
+    "energy_balance": {"units": "1", "long_name": "friction work minus dissipated energy over the cycle's absolute "
+                                                 "work"},
     "cycles": {"units": "1", "long_name": "cycles run"},
     "settled": {"units": "1", "long_name": "the cycle repeated to cycle_tol (1) or max_cycles was reached (0)"},
     "loop_position": {"units": "1", "long_name": "position over the amplitude X / A"},
@@ -48,6 +50,7 @@ def reciprocating_point(*, frequency: float, glassy_ratio: float, seed: int, n: 
 
     return {"dissipated_energy_per_cycle": float(out.dissipated_energy_per_cycle),
             "friction_work_per_cycle": float(out.friction_work_per_cycle), "cycles": float(out.attrs["cycles"]),
+            "energy_balance": float(out.energy_balance),
             "settled": float(out.attrs["status"] == "settled"),
             "loop_position": loop(out.position_x / amplitude, "loop_position"),
             "loop_friction": loop(out.tangential_force_x / out.mean_pressure, "loop_friction"),
