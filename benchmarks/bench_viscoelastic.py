@@ -16,8 +16,9 @@ number to ``--json``:
 3. **floor** (``--floor``, with the ``path`` walk): what the elastic solver itself would take from starts as far
    off as the path's. At each speed after the first, the elastic solve (E0) starts from its own answer moved by
    the path's start error there (the prediction minus that speed's answer, scaled to the elastic pressure's
-   norm, clipped at zero); the first speed counts one cold elastic solve. Their total time over one cold
-   elastic solve is the sweep ratio an elastic-speed solver would reach on this walk's starts.
+   norm, clipped at zero; the clipped start's own distance is reported beside the walk's); the first speed counts
+   one cold elastic solve. Their total time (medians of ``--repeats``) over one cold elastic solve is the sweep
+   ratio an elastic-speed solver would reach from starts as good as this walk's.
 
 Run ``python benchmarks/bench_viscoelastic.py --help``.
 """
@@ -68,25 +69,28 @@ def timed(fn, repeats: int):
     return statistics.median(times), out
 
 
-def elastic_floor(h, p: float, zetas, answers: list, tol: float, elastic_s: float) -> dict:
+def elastic_floor(h, p: float, zetas, answers: list, tol: float, elastic_s: float, repeats: int) -> dict:
     """The elastic solver (E0) from starts as far off as the path walk's (see the module docstring, 3.), its
-    iterations and time per speed; printed as a table, returned for ``--json``."""
+    iterations and time per speed (median of ``repeats``); printed as a table, returned for ``--json``."""
     cold = contactlib.solve(h, E=1.0, nu=0.5, mean_pressure=p, tol=tol)
     elastic = cold.pressure.values
     scale = np.linalg.norm(elastic)
     rows, total_s, total_its = [], elastic_s, int(cold.iterations)  # the first speed: one cold solve
-    print("\n| zeta | path start error (relative L2) | elastic iterations from as far off (cold: "
-          f"{int(cold.iterations)}) | elastic time [s] |\n|---|---|---|---|")
+    print("\n| zeta | path start error (relative L2) | elastic start error (after clipping) | elastic iterations "
+          f"from as far off (cold: {int(cold.iterations)}) | elastic time [s] |\n|---|---|---|---|---|")
     for k in range(1, len(answers)):
         error = contactlib.predict_pressure(list(zetas[:k]), answers[:k], zetas[k]) - answers[k]
         norm = np.linalg.norm(answers[k])
         start = np.clip(elastic + error * (scale / norm), 0.0, None)
-        t, out = timed(lambda: contactlib.solve(h, E=1.0, nu=0.5, mean_pressure=p, tol=tol, initial_pressure=start), 1)
+        t, out = timed(lambda: contactlib.solve(h, E=1.0, nu=0.5, mean_pressure=p, tol=tol, initial_pressure=start),
+                       repeats)
         rows.append({"zeta": float(zetas[k]), "start_error": float(np.linalg.norm(error) / norm),
+                     "elastic_start_error": float(np.linalg.norm(start - elastic) / scale),
                      "iterations": int(out.iterations), "elastic_s": t})
         total_s += t
         total_its += int(out.iterations)
-        print(f"| {zetas[k]:.3g} | {rows[-1]['start_error']:.3f} | {rows[-1]['iterations']} | {t:.3f} |")
+        print(f"| {zetas[k]:.3g} | {rows[-1]['start_error']:.3f} | {rows[-1]['elastic_start_error']:.3f} | "
+              f"{rows[-1]['iterations']} | {t:.3f} |")
     print(f"\n# elastic floor: {total_its} elastic iterations over the sweep ({int(cold.iterations)} cold), "
           f"{total_s:.2f} s = {total_s / elastic_s:.1f}x one elastic solve ({elastic_s:.3f} s)")
     return {"speeds": rows, "iterations": total_its, "cold_iterations": int(cold.iterations), "s": total_s,
@@ -192,7 +196,8 @@ def main(argv=None) -> int:
               f"{updates} set updates; CPU time {cpu[walk]:.2f} s = {cpu[walk] / c_el:.1f}x ({c_el:.3f} s) "
               f"(load {os.getloadavg()[0]:.1f})")
     if args.floor:
-        sweep["floor"] = elastic_floor(h, p, zetas, [out.pressure.values for out in paths["path"]], args.tol, t_el)
+        sweep["floor"] = elastic_floor(h, p, zetas, [out.pressure.values for out in paths["path"]], args.tol, t_el,
+                                       args.repeats)
     if args.json:
         args.json.write_text(json.dumps({"host": info, "steady": rows, "sweep": sweep}, indent=1))
     return 0

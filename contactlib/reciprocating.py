@@ -21,19 +21,20 @@ from .inputs import check_tolerance, grid_of
 from .labels import attrs_for
 from .materials import Elastic, material_of
 from .solvers.state import dot
-from .transient import SLIDE_PER_STEP, TimeStepWarning, TransientInterrupted, _prepare, _Record, slide_per_step
+from .transient import SLIDE_PER_STEP, TimeStepWarning, TransientInterrupted, _prepare, _Record, _slide_per_step
 
 log = logging.getLogger(__name__)
 
 MIN_STEPS_PER_CYCLE = 64
-"""``steps_per_cycle``'s least default, however short the stroke: the cycle's own shape in time."""
+"""``steps_per_cycle``'s least default, however small the amplitude (and an elastic body's): the cycle's own shape
+in time."""
 
 ENERGY_BALANCE = 0.05
 """A settled cycle whose friction work and dissipated energy differ by more than this fraction of its absolute
 work warns (:class:`.TimeStepWarning`): the steps do not resolve it. Over 72 scenes at the default steps (1D
-256 points, 2D 32^2 and 64^2; E_inf/E0 10 and 1000; f tau 1e-3..10; strokes 0.01 and 0.3 of the window; two
-loads), 52 settled and five of them passed it: the 2D strokes of 0.3 at f tau = 1e-3 under the small load (tiny contacts that a
-spacing a step still jumps across; the energy moved 6-12 % on doubling the steps, a first-order
+256 points, 2D 32^2 and 64^2; E_inf/E0 10 and 1000; f tau 1e-3..10; amplitudes 0.01 and 0.3 of the window;
+two loads), 52 settled and five of them passed it: the 2D amplitudes of 0.3 at f tau = 1e-3 under the small
+load (tiny contacts that a spacing a step still jumps across; the energy moved 6-12 % on doubling the steps, a first-order
 convergence) and one 1D profile whose loop work alone lagged (+0.16; its energy moved 0.45 %). Below it the
 energy moved at most 3.8 % on doubling, and less than 1 % in 41 of the 47 settled scenes below it."""
 
@@ -71,16 +72,20 @@ def solve_reciprocating(
     between consecutive cycles, and the change still to come estimated from their geometric decrease
     (``c r / (1 - r)`` with ``r`` the ratio of the last two changes), are both at most ``cycle_tol``. The
     change is the larger of the tangential-force loop's relative L2 change and the dissipated energy's
-    change relative to the cycle's absolute work ``oint |tau_x dX|``. Past ``max_cycles`` the cycles done
-    are returned with ``attrs['status']`` saying the cycle did not settle and the last change.
+    change relative to the cycle's absolute work (``oint |tau_a dX_a|`` summed over the axes). A tangential
+    force below the steps' error (``tol`` times the mean pressure) counts as zero there: an elastic body's
+    loop, 1e-18 of the load, settles at ``min_cycles``. Past ``max_cycles`` the cycles done are returned with
+    ``attrs['status']`` saying the cycle did not settle and the last change.
 
     Parameters as :func:`solve_transient`; ``amplitude`` [length] and ``frequency`` [1/time] > 0;
     ``direction`` [rad] (a profile: 0 or pi); ``tol`` at most a tenth of ``cycle_tol`` (else ValueError: the
     steps' own error would keep the cycles from settling). ``steps_per_cycle``: by default the fewest, and at
     least :data:`MIN_STEPS_PER_CYCLE`, that slide the surface at most :data:`.transient.SLIDE_PER_STEP` grid
-    spacing a step (``2 pi amplitude`` over the spacing along ``direction``: 483 for an amplitude of 0.3 of a
-    256-point window). Fewer, given, warn (:class:`contactlib.TimeStepWarning`): at 7.5 spacings a step that
-    profile dissipated 41 % too little.
+    spacing a step (``2 pi amplitude`` over the spacing along ``direction``, rounded up to a multiple of 4: 484
+    for an amplitude of 0.3 of a 256-point window, 324 for 0.1 of a 512^2 map; an elastic body, which has no
+    memory, takes 64). Fewer, given, warn (:class:`contactlib.TimeStepWarning`): at 7.5 spacings a step that
+    profile dissipated 41 % too little (the profile: 256 points, amplitude 0.3 of the window, standard linear
+    solid E_inf/E0 = 10, f tau = 1e-3).
 
     Returns
     -------
@@ -92,9 +97,9 @@ def solve_reciprocating(
         (``oint tau . dX``, the work the motion puts in: equal to it once the cycle repeats) [pressure
         length], and ``cycle_change``. Scalars ``dissipated_energy_per_cycle`` and
         ``friction_work_per_cycle`` of the last cycle, and ``energy_balance``, their difference over the
-        cycle's absolute work ``oint |tau . dX|`` (the time stepping's error shows there: -0.77 at 7.5
-        spacings a step, -0.012 at 1.0, -0.003 at 0.47 on the profile above; a settled cycle beyond
-        :data:`ENERGY_BALANCE` warns); ``attrs['status']`` ``"settled"`` or not,
+        cycle's absolute work (the time stepping's error shows there: -0.77 at 7.5 spacings a step, -0.012
+        at 1.0, -0.003 at 0.47 on the profile above; a settled cycle beyond :data:`ENERGY_BALANCE` warns; NaN
+        where the absolute work is below the steps' error, as on an elastic body); ``attrs['status']`` ``"settled"`` or not,
         ``attrs['slide_per_step']`` the largest slide of a step [grid spacings].
     """
     for value, name in ((amplitude, "amplitude"), (frequency, "frequency")):
@@ -121,9 +126,11 @@ def solve_reciprocating(
     dim = grid.dim
     # the sine's steepest step, 2 sin(pi / steps) <= 2 pi / steps of the amplitude, along each axis
     spacings = 2 * math.pi * amplitude * float(np.max(np.abs(unit[:dim]) / np.asarray(grid.spacing, dtype=float)))
-    fewest = max(MIN_STEPS_PER_CYCLE, 4 * math.ceil(spacings / SLIDE_PER_STEP / 4))  # quarter cycles on steps
+    memory = not isinstance(material, Elastic)  # an elastic body's steps are static solves: the slide is free
+    fewest = max(MIN_STEPS_PER_CYCLE, 4 * math.ceil(spacings / SLIDE_PER_STEP / 4)) if memory else MIN_STEPS_PER_CYCLE
     given = steps_per_cycle is not None
     steps_per_cycle = steps_per_cycle if given else fewest
+    log.info("solve_reciprocating: %d steps a cycle (%s)", steps_per_cycle, "given" if given else "by the slide a step")
     dt = 1.0 / (frequency * steps_per_cycle)
     cycle_times = np.arange(steps_per_cycle + 1) * dt
 
@@ -135,12 +142,15 @@ def solve_reciprocating(
         layer=layer, periodic=periodic, tol=tol, max_iter=max_iter, length=length)
     if stepper.grid.dim == 1 and abs(math.sin(direction)) > 1e-12:
         raise ValueError(f"direction must be 0 or pi for a profile (it slides along x), got {direction!r}")
-    slide = slide_per_step(positions, grid.spacing)
-    if given and slide > SLIDE_PER_STEP and not isinstance(material, Elastic):
+    slide = _slide_per_step(positions, grid.spacing)
+    if given and slide > SLIDE_PER_STEP * (1 + 1e-9) and memory:
         warnings.warn(f"steps_per_cycle {steps_per_cycle} slides the surface up to {slide:.3g} grid spacings a step, "
                       f"more than {SLIDE_PER_STEP:g}: the energy per cycle and the loop lose accuracy (the default, "
                       f"None, takes {fewest})", TimeStepWarning, stacklevel=2)
     units = (length_unit, pressure_unit, time_unit)
+    # below the steps' solve error a tangential force is noise (an elastic body's loop is 1e-18 of the load): the
+    # floors of the loop's norm and of the cycle's absolute work in the change and the balance
+    noise = tol * float(mean_pressure)
     start = _time.perf_counter()
     last = stepper.first(mean_pressure, control, positions[0], relaxed=True)
     energies, works, changes, previous_loop = [], [], [], None
@@ -164,14 +174,15 @@ def solve_reciprocating(
             mid = 0.5 * (forces[:, 1:] + forces[:, :-1])
             works.append(float(np.sum(mid * moved.T)))
             energies.append(float(np.sum(record.columns["dissipated_power"]) * dt))
-            scale = float(np.sum(np.abs(mid * moved.T))) or 1.0
-            balance = (works[-1] - energies[-1]) / scale
+            absolute = float(np.sum(np.abs(mid * moved.T)))  # sum over the axes of |tau_a dX_a|
+            scale = max(absolute, noise * 4 * amplitude) or 1.0
+            balance = (works[-1] - energies[-1]) / absolute if absolute > noise * 4 * amplitude else math.nan
             log.info("solve_reciprocating: cycle %d, energy %.6g, loop work %.6g", cycle + 1, energies[-1], works[-1])
             if previous_loop is not None:
-                norm = float(np.linalg.norm(loop)) or 1.0
+                norm = max(float(np.linalg.norm(loop)), noise * math.sqrt(loop.size)) or 1.0
                 changes.append(max(float(np.linalg.norm(loop - previous_loop)) / norm,
                                    abs(energies[-1] - energies[-2]) / scale))
-                if len(energies) >= min_cycles and _settled(changes, cycle_tol):
+                if len(energies) >= min_cycles and _settled(changes, cycle_tol, tol):
                     status = "settled"
                     break
             previous_loop = loop
@@ -189,7 +200,7 @@ def solve_reciprocating(
     if status is None:
         status = (f"not settled after {max_cycles} cycles: last change between cycles "
                   f"{changes[-1] if changes else float('nan'):.3g} > cycle_tol {cycle_tol:g}")
-    elif abs(balance) > ENERGY_BALANCE:
+    elif math.isfinite(balance) and abs(balance) > ENERGY_BALANCE:
         warnings.warn(f"energy_balance {balance:.3g}: the settled cycle's friction work and dissipated energy differ "
                       f"by more than {ENERGY_BALANCE:g} of its absolute work; the {steps_per_cycle} steps a cycle do "
                       f"not resolve it (give steps_per_cycle, e.g. {2 * steps_per_cycle})", TimeStepWarning,
@@ -226,11 +237,14 @@ def _extrapolate(first, second, third):
     return [x + d * (ratio / (1 - ratio)) for x, d in zip(third, d2)]
 
 
-def _settled(changes: list[float], cycle_tol: float) -> bool:
-    """The cycle repeats to ``cycle_tol``: the last change, and the rest of a geometric decrease, below it."""
+def _settled(changes: list[float], cycle_tol: float, noise: float = 0.0) -> bool:
+    """The cycle repeats to ``cycle_tol``: the last change, and the rest of a geometric decrease, below it; or the
+    last change is within ``noise`` (the steps' own tolerance), where the ratio of two changes means nothing."""
     last = changes[-1]
     if last > cycle_tol:
         return False
+    if last <= noise:
+        return True
     if len(changes) < 2 or changes[-2] <= 0:
         return True
     ratio = last / changes[-2]

@@ -247,6 +247,32 @@ def test_reciprocating_warns_where_the_settled_cycle_does_not_balance():
     assert abs(float(finer.energy_balance)) < 0.05
 
 
+def test_reciprocating_default_steps_follow_the_spacing_along_the_direction():
+    """On a map with unequal spacings the default count follows the spacing along the sliding direction, and is
+    the fewest: each step slides at most one spacing, yet more than 0.9 of one."""
+    h = 1e-3 * surfaces.self_affine(64, hurst=0.8, q_roll=1, q_cutoff=8, rms_slope=0.1, seed=0).values[::2, :]
+    m = contactlib.Viscoelastic.standard_linear_solid(E0=1.0, E_inf=10.0, tau=1.0, nu=0.5)
+    expected = {0.0: 64, math.pi / 2: 124, math.pi / 4: 88, 3 * math.pi / 4: 88}  # 2 pi 0.3 (32 or 64 nodes)
+    for direction, steps in expected.items():
+        out = contactlib.solve_reciprocating(h, material=m, amplitude=0.3, frequency=1.0, mean_pressure=1e-4,
+                                             length=1.0, direction=direction, max_cycles=2, min_cycles=2)
+        assert out.attrs["steps_per_cycle"] == steps, direction
+        assert 0.9 < out.attrs["slide_per_step"] <= 1.0 or steps == 64
+
+
+def test_reciprocating_elastic_body_settles_at_once_without_a_balance():
+    """An elastic body has no memory: 64 steps whatever the slide, no warning, its loop (1e-18 of the load, below
+    the steps' error) counts as zero so the cycle settles at min_cycles, and the balance of nothing is NaN."""
+    h = surfaces.self_affine(256, hurst=0.8, q_roll=1, q_cutoff=32, rms_slope=0.1, seed=0, dim=1)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", contactlib.TimeStepWarning)
+        out = contactlib.solve_reciprocating(h, E=1.0, nu=0.5, amplitude=0.3, frequency=1e-3, mean_pressure=0.5,
+                                             length=1.0)
+    assert out.attrs["steps_per_cycle"] == 64 and out.attrs["status"] == "settled" and out.attrs["cycles"] == 3
+    assert np.isnan(float(out.energy_balance))
+    assert abs(float(out.dissipated_energy_per_cycle)) < 1e-12 and abs(float(out.friction_work_per_cycle)) < 1e-12
+
+
 def test_transient_warns_where_a_viscoelastic_path_slides_past_a_grid_spacing():
     """The time stepper takes the pressure rate as constant over a step at each point of the body: a path that
     moves the surface two spacings a step is warned of on a viscoelastic body, not on an elastic one (no memory)."""

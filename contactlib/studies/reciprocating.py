@@ -33,16 +33,17 @@ VARIABLES: dict[str, dict[str, str]] = {
 
 def reciprocating_point(*, frequency: float, glassy_ratio: float, seed: int, n: int, hurst: float, q_low: float,
                         q_roll: float, q_cutoff: float, rms_slope: float, reduced_pressure: float, amplitude: float,
-                        steps_per_cycle: int, max_cycles: int, cycle_tol: float, E: float, tau: float, nu: float,
+                        steps_per_cycle: int | None, max_cycles: int, cycle_tol: float, E: float, tau: float, nu: float,
                         tol: float, max_iter: int, kernel: str) -> dict:
     """Energy per cycle and the last cycle's loop at ``frequency`` [1/s] (``amplitude`` [m], window 1 m)."""
     h = rough_surface(n=n, hurst=hurst, seed=seed, q_low=q_low, q_roll=q_roll, q_cutoff=q_cutoff, rms_slope=rms_slope)
     m = material(E0=E, glassy_ratio=glassy_ratio, tau=tau, nu=nu)
     load = reduced_pressure * relaxed_contact_modulus(m) * analysis.rms_slope(h)
     out = solve_reciprocating(h, material=m, amplitude=amplitude, frequency=frequency, mean_pressure=load,
-                              steps_per_cycle=int(steps_per_cycle), max_cycles=int(max_cycles), cycle_tol=cycle_tol,
-                              tol=tol, max_iter=max_iter)
-    phase = np.arange(1, int(steps_per_cycle) + 1) / int(steps_per_cycle)
+                              steps_per_cycle=None if steps_per_cycle is None else int(steps_per_cycle),
+                              max_cycles=int(max_cycles), cycle_tol=cycle_tol, tol=tol, max_iter=max_iter)
+    steps = int(out.attrs["steps_per_cycle"])  # None: the library's count by the slide a step
+    phase = np.arange(1, steps + 1) / steps
 
     def loop(values, name):
         return xr.DataArray(np.asarray(values, dtype=float), dims=("phase",), coords={"phase": phase},
