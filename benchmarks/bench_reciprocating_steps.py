@@ -69,8 +69,8 @@ def scan() -> None:
             change = abs(energy2 - energy) / abs(energy2) if energy2 else math.nan
             settled = out.attrs["status"] == "settled"
             rows.append((settled, float(out.energy_balance), change))
-            print(f"| {dim} | {n} | {ratio:g} | {frequency:g} | {amplitude:g} | {load:g} | {out.attrs['steps_per_cycle']} "
-                  f"| {'settled' if settled else 'not settled'} | {float(out.energy_balance):+.4f} | {change:.4f} | "
+            print(f"| {dim} | {n} | {ratio:g} | {frequency:g} | {amplitude:g} | {load:g} | "
+                  f"{out.attrs['steps_per_cycle']} | {'settled' if settled else 'not settled'} | {float(out.energy_balance):+.4f} | {change:.4f} | "
                   f"{float(twice.energy_balance):+.4f} | {seconds + more:.1f} |", flush=True)
     settled = [r for r in rows if r[0]]
     above = [r for r in settled if abs(r[1]) > contactlib.reciprocating.ENERGY_BALANCE]

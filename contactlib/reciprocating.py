@@ -34,9 +34,10 @@ ENERGY_BALANCE = 0.05
 work warns (:class:`.TimeStepWarning`): the steps do not resolve it. Over 72 scenes at the default steps (1D
 256 points, 2D 32^2 and 64^2; E_inf/E0 10 and 1000; f tau 1e-3..10; amplitudes 0.01 and 0.3 of the window;
 two loads), 52 settled and five of them passed it: the 2D amplitudes of 0.3 at f tau = 1e-3 under the small
-load (tiny contacts that a spacing a step still jumps across; the energy moved 6-12 % on doubling the steps, a first-order
-convergence) and one 1D profile whose loop work alone lagged (+0.16; its energy moved 0.45 %). Below it the
-energy moved at most 3.8 % on doubling, and less than 1 % in 41 of the 47 settled scenes below it."""
+load (tiny contacts that a spacing a step still jumps across; the energy moved 6-12 % on doubling the steps, a
+first-order convergence) and one 1D profile whose loop work alone lagged (+0.16; its energy moved 0.45 %).
+Below it the energy moved at most 3.8 % on doubling, and less than 1 % in 41 of the 47 settled scenes below
+it."""
 
 
 def solve_reciprocating(
@@ -99,8 +100,8 @@ def solve_reciprocating(
         ``friction_work_per_cycle`` of the last cycle, and ``energy_balance``, their difference over the
         cycle's absolute work (the time stepping's error shows there: -0.77 at 7.5 spacings a step, -0.012
         at 1.0, -0.003 at 0.47 on the profile above; a settled cycle beyond :data:`ENERGY_BALANCE` warns; NaN
-        where the absolute work is below the steps' error, as on an elastic body); ``attrs['status']`` ``"settled"`` or not,
-        ``attrs['slide_per_step']`` the largest slide of a step [grid spacings].
+        where the absolute work is below the steps' error, as on an elastic body); ``attrs['status']``
+        ``"settled"`` or not, ``attrs['slide_per_step']`` the largest slide of a step [grid spacings].
     """
     for value, name in ((amplitude, "amplitude"), (frequency, "frequency")):
         if isinstance(value, bool) or not isinstance(value, numbers.Real) or not math.isfinite(value) or value <= 0:

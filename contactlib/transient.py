@@ -46,8 +46,8 @@ SLIDE_PER_STEP = 1.0
 viscoelastic run warns (:class:`TimeStepWarning`). A step takes the pressure rate as constant at each point
 of the body, so a surface that moves several spacings in a step smears its features' passage. A 256-point
 rough profile reciprocated at an amplitude of 0.3 of its window (E_inf/E0 = 10, f tau = 1e-3) dissipates 41 %
-too little per cycle at 7.5 spacings a step and 12 % at 3.8; 1.9 % at 1.9 and 0.2 % at 0.94, with the friction work then
-within 1 % of it. On 512 points the same slides err by less (2.8 % at 3.8, 0.02 % at 0.94)."""
+too little per cycle at 7.5 spacings a step and 12 % at 3.8; 1.9 % at 1.9 and 0.2 % at 0.94, with the friction
+work then within 1 % of it. On 512 points the same slides err by less (2.8 % at 3.8, 0.02 % at 0.94)."""
 
 
 class TimeStepWarning(UserWarning):
