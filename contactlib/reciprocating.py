@@ -21,7 +21,7 @@ from .inputs import check_tolerance, grid_of
 from .labels import attrs_for
 from .materials import Elastic, material_of
 from .solvers.state import dot
-from .transient import SLIDE_PER_STEP, TimeStepWarning, TransientInterrupted, _prepare, _Record, _slide_per_step
+from .transient import SLIDE_PER_STEP, TimeStepWarning, TransientInterrupted, _check_slide, _prepare, _Record
 
 log = logging.getLogger(__name__)
 
@@ -143,15 +143,13 @@ def solve_reciprocating(
         layer=layer, periodic=periodic, tol=tol, max_iter=max_iter, length=length)
     if stepper.grid.dim == 1 and abs(math.sin(direction)) > 1e-12:
         raise ValueError(f"direction must be 0 or pi for a profile (it slides along x), got {direction!r}")
-    slide = _slide_per_step(positions, grid.spacing)
-    if given and slide > SLIDE_PER_STEP * (1 + 1e-9) and memory:
-        warnings.warn(f"steps_per_cycle {steps_per_cycle} slides the surface up to {slide:.3g} grid spacings a step, "
-                      f"more than {SLIDE_PER_STEP:g}: the energy per cycle and the loop lose accuracy (the default, "
-                      f"None, takes {fewest})", TimeStepWarning, stacklevel=2)
+    slide = _check_slide(positions, stepper, f"steps_per_cycle {steps_per_cycle}: the surface", "the energy per cycle "
+                         f"and the loop lose accuracy (the default, None, takes {fewest})")  # by default within it
     units = (length_unit, pressure_unit, time_unit)
     # below the steps' solve error a tangential force is noise (an elastic body's loop is 1e-18 of the load): the
     # floors of the loop's norm and of the cycle's absolute work in the change and the balance
     noise = tol * float(mean_pressure)
+    noise_work = noise * 4 * amplitude  # over a cycle's travel
     start = _time.perf_counter()
     last = stepper.first(mean_pressure, control, positions[0], relaxed=True)
     energies, works, changes, previous_loop = [], [], [], None
@@ -176,8 +174,8 @@ def solve_reciprocating(
             works.append(float(np.sum(mid * moved.T)))
             energies.append(float(np.sum(record.columns["dissipated_power"]) * dt))
             absolute = float(np.sum(np.abs(mid * moved.T)))  # sum over the axes of |tau_a dX_a|
-            scale = max(absolute, noise * 4 * amplitude) or 1.0
-            balance = (works[-1] - energies[-1]) / absolute if absolute > noise * 4 * amplitude else math.nan
+            scale = max(absolute, noise_work) or 1.0
+            balance = (works[-1] - energies[-1]) / absolute if absolute > noise_work else math.nan
             log.info("solve_reciprocating: cycle %d, energy %.6g, loop work %.6g", cycle + 1, energies[-1], works[-1])
             if previous_loop is not None:
                 norm = max(float(np.linalg.norm(loop)), noise * math.sqrt(loop.size)) or 1.0

@@ -146,11 +146,8 @@ def solve_transient(
         penetration=penetration, path=path, layer=layer, periodic=periodic, tol=tol, max_iter=max_iter, length=length)
     if initial not in INITIAL_STATES:
         raise ValueError(f"initial must be one of {INITIAL_STATES}, got {initial!r}")
-    slide = _slide_per_step(positions, stepper.grid.spacing)
-    if slide > SLIDE_PER_STEP * (1 + 1e-9) and not isinstance(stepper.material, Elastic):
-        warnings.warn(f"path: the surface slides up to {slide:.3g} grid spacings in one step (times), more than "
-                      f"{SLIDE_PER_STEP:g}: the dissipated power and friction lose accuracy (take more times)",
-                      TimeStepWarning, stacklevel=2)
+    _check_slide(positions, stepper, "path: the surface", "the dissipated power and friction lose accuracy (take "
+                 "more times)")
     if log_every is not None:
         check_whole(log_every, "log_every", 0)  # steps between log lines; 0: none
     saved = _saved_steps(save_fields, times)
@@ -390,12 +387,16 @@ def _prepare(heights, *, times, material, mean_pressure, penetration, path, laye
     return stepper, times, loads, positions, control
 
 
-def _slide_per_step(positions: np.ndarray, spacing) -> float:
+def _check_slide(positions: np.ndarray, stepper: "_Stepper", what: str, consequence: str) -> float:
     """The largest slide between consecutive positions ``(n, dim)`` [length] (as :func:`_positions` gives them),
-    in grid spacings ``spacing`` [length, one per axis] along each axis (0 without a step)."""
-    if len(positions) < 2:
-        return 0.0
-    return float(np.max(np.abs(np.diff(positions, axis=0)) / np.asarray(spacing, dtype=float)[: positions.shape[1]]))
+    in grid spacings along each axis (0 without a step); beyond :data:`SLIDE_PER_STEP` on a body with memory,
+    a :class:`TimeStepWarning` saying ``what`` slides and ``consequence`` (at the caller's caller)."""
+    spacing = np.asarray(stepper.grid.spacing, dtype=float)[: positions.shape[1]]
+    slide = float(np.max(np.abs(np.diff(positions, axis=0)) / spacing)) if len(positions) > 1 else 0.0
+    if slide > SLIDE_PER_STEP * (1 + 1e-9) and not isinstance(stepper.material, Elastic):
+        warnings.warn(f"{what} slides up to {slide:.3g} grid spacings a step, more than {SLIDE_PER_STEP:g}: "
+                      f"{consequence}", TimeStepWarning, stacklevel=3)
+    return slide
 
 
 def _times(times) -> np.ndarray:

@@ -223,7 +223,7 @@ def test_reciprocating_default_steps_resolve_the_slide():
         warnings.simplefilter("always")
         coarse = contactlib.solve_reciprocating(h, steps_per_cycle=64, **args)
     messages = [str(w.message) for w in caught if issubclass(w.category, contactlib.TimeStepWarning)]
-    assert any(re.search("steps_per_cycle 64 .* 7.5.* takes 484", m) for m in messages)  # before the run
+    assert any(re.search("steps_per_cycle 64: .* 7.5.* takes 484", m) for m in messages)  # before the run
     assert any(m.startswith("energy_balance -0.77") for m in messages)  # after it
     assert float(coarse.dissipated_energy_per_cycle) < 0.7 * reference
     assert float(coarse.energy_balance) < -0.5
@@ -292,7 +292,7 @@ def test_transient_warns_where_a_viscoelastic_path_slides_past_a_grid_spacing():
 def test_reciprocating_not_settled_returns_the_cycles_with_a_status():
     x = np.arange(64) / 64
     m = contactlib.Viscoelastic.standard_linear_solid(E0=1.0, E_inf=10.0, tau=1.0, nu=0.5)
-    with pytest.warns(contactlib.TimeStepWarning, match="steps_per_cycle 16 slides the surface up to 2.45"):
+    with pytest.warns(contactlib.TimeStepWarning, match="steps_per_cycle 16: the surface slides up to 2.45"):
         out = contactlib.solve_reciprocating(0.01 * np.cos(2 * np.pi * x), material=m, amplitude=0.1, frequency=1.0,
                                              mean_pressure=0.003, length=1.0, steps_per_cycle=16, max_cycles=3,
                                              accelerate=False)
