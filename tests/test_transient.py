@@ -204,8 +204,8 @@ def test_reciprocating_dissipation_has_one_maximum_where_predicted():
 
 def test_reciprocating_default_steps_resolve_the_slide():
     """By default a cycle has the steps that slide the surface at most a grid spacing each: a rough profile
-    reciprocated over 0.3 of its window then dissipates what a 1024-step cycle does, where the old fixed 64
-    steps (7.5 spacings a step) dissipated 41 % too little; given too few steps, it warns, and the energy
+    reciprocated at an amplitude of 0.3 of its window then dissipates what a 1024-step cycle does, where the old 64
+    fixed steps (7.5 spacings a step) dissipated 41 % too little; given too few steps, it warns, and the energy
     balance shows the error."""
     h = surfaces.self_affine(256, hurst=0.8, q_roll=1, q_cutoff=32, rms_slope=0.1, seed=0, dim=1)
     m = contactlib.Viscoelastic.standard_linear_solid(E0=1.0, E_inf=10.0, tau=1.0, nu=0.5)
