@@ -11,6 +11,7 @@ import numpy as np
 import xarray as xr
 
 from .. import analysis
+from ..labels import attrs_for
 from ..reciprocating import solve_reciprocating
 from ._common import rough_surface
 from ._viscoelastic_scene import SCENE_VARIABLES, material, relaxed_contact_modulus
@@ -21,8 +22,7 @@ VARIABLES: dict[str, dict[str, str]] = {
     "phase": {"units": "1", "long_name": "fraction of the cycle"},
     "dissipated_energy_per_cycle": {"units": "Pa m", "long_name": "energy dissipated per unit area per cycle"},
     "friction_work_per_cycle": {"units": "Pa m", "long_name": "loop area: work of the tangential force per cycle"},
-    "energy_balance": {"units": "1", "long_name": "friction work minus dissipated energy over the cycle's absolute "
-                                                 "work"},
+    "energy_balance": attrs_for("energy_balance"),  # the library's own label, dimensionless
     "cycles": {"units": "1", "long_name": "cycles run"},
     "settled": {"units": "1", "long_name": "the cycle repeated to cycle_tol (1) or max_cycles was reached (0)"},
     "loop_position": {"units": "1", "long_name": "position over the amplitude X / A"},
