@@ -7,6 +7,9 @@ The rule, in one place:
   half-space's at every non-zero wavevector of the grid is modelled as the half-space (its
   ``q = 0`` compliance kept: a confined compressible layer's uniform compression fixes where the
   penetration is measured from);
+* on a non-periodic window a confined layer (frictionless) is the periodic layer of the doubled window loaded on
+  the window alone, where its influence has died out a window's length away (:data:`LAYER_REACH`), never the
+  half-space (which holds the longest waves, where a layer differs most);
 * the normal-tangential coupling is left out where ``friction = 0`` or where ``friction * |c(q)| /
   Czz(q) <= 0.1 tol`` at every wavevector (``nu = 0.5`` on a half-space: exactly 0);
 * a viscoelastic body in steady sliding is modelled elastic, with its relaxed modulus ``E0`` (or its
@@ -126,7 +129,12 @@ def body_model(grid: Grid, *, material, layer: Layer | None, friction: float, di
     E_star = E / (1 - nu**2)
     if layer is not None:
         attrs.update(layer_thickness=float(layer.thickness), layer_base=layer.base)
-    if not periodic:  # zero-padded half-space (layers and steady viscoelastic sliding are refused before)
+    if not periodic and layer is not None:  # a confined frictionless layer (the others are refused before)
+        compliance, layer_attrs = _padded_layer(grid, E, nu, layer)
+        attrs.update(layer_attrs)
+        attrs["model"] += note_material
+        return BodyModel(compliance, None, None, attrs)
+    if not periodic:  # zero-padded half-space (steady viscoelastic sliding is refused before)
         coupled = friction > 0 and nu < 0.5
         coupling = Coupling(grid, periodic=False, friction=friction,
                             influence=halfspace_coupling_influence(grid, E, nu, direction)) if coupled else None
@@ -224,6 +232,42 @@ def body_model(grid: Grid, *, material, layer: Layer | None, friction: float, di
     attrs.update(body=body, coupling="normal-tangential" if (coupled and friction > 0) else "none",
                  model=note + note_material)
     return BodyModel(compliance, coupling, tensor, attrs, factor)
+
+
+LAYER_REACH = 1e-4
+"""A confined layer on a non-periodic window is the periodic layer of the doubled window (:meth:`Grid.padded`)
+loaded on the window alone: exact where its influence has died out at the images, a window's length away. Its
+influence there over its own element's (``attrs['layer_reach']``) must be at most this. It bounds the error of the
+embedding: a sphere on 128^2 (nu = 0.3, contact radius 0.05 of the window, tol 1e-10) against a periodic window 8x
+wider, at h = 0.05 / 0.2 / 0.4 of the window (reach 6.5e-6 / 9.3e-6 / 5.3e-5), has the penetration within 2e-8 /
+6e-7 / 3.7e-5 and the pressure within 2.7e-6 / 2.8e-6 / 2.6e-6 of its peak (the band-limited kernel's own ripple,
+about 5e-6 of an element's influence past ten thicknesses, sets the floor). A confined layer's influence falls
+exponentially over its thickness: past about 10 thicknesses it is at that floor."""
+
+
+def _padded_layer(grid: Grid, E: float, nu: float, layer: Layer) -> tuple[Compliance, dict]:
+    """A confined layer on a non-periodic window: its compliance on the doubled window and the attrs naming it.
+    Refused (``ValueError``) where the layer's influence reaches the images (:data:`LAYER_REACH`). Never reduced to
+    the half-space: the zero-padded half-space holds every wavelength, the longest ones included, where a layer much
+    thicker than the window still differs (its base lowers the whole window's displacement, by about the contact's
+    size over the thickness)."""
+    padded = grid.padded()
+    normal = surface_green_tensor(padded, E, nu, layer.thickness, layer.base).normal
+    response = fft.irfftn(normal, padded.shape)
+    middle = tuple(n // 2 for n in padded.shape)  # a window's length away along an axis: the images' distance
+    reach = max(float(np.abs(np.take(response, middle[axis], axis=axis)).max()) for axis in range(grid.dim))
+    reach /= float(response.flat[0])
+    if reach > LAYER_REACH:
+        raise ValueError(
+            f"layer: on a non-periodic window the confined layer of thickness {layer.thickness:g} still acts a "
+            f"window's length away ({reach:.1e} of its own element's influence, more than {LAYER_REACH:g}): its "
+            f"influence would reach the window's images. Widen the window (a confined layer's influence dies out "
+            "within about 10 thicknesses), use periodic=True, or, for a layer far thicker than the contact, leave "
+            "it out (the half-space)")
+    attrs = {"layer_thickness": float(layer.thickness), "layer_base": layer.base, "body": "layer", "coupling": "none",
+             "layer_reach": reach,
+             "model": f"{layer.base} layer, h = {layer.thickness:g}, zero-padded (its reach at the images {reach:.1e})"}
+    return Compliance(grid, E_star=E / (1 - nu**2), periodic=False, transfer=normal), attrs
 
 
 _HALFSPACE: contextvars.ContextVar[list | None] = contextvars.ContextVar("halfspace_tensor", default=None)

@@ -157,14 +157,18 @@ def check_friction(layer, friction, sliding_direction, nu, method, kernel, perio
             raise ValueError(f"layer must be a contactlib.Layer or None, got {layer!r}")
         if not 0.0 <= nu <= 0.5:
             raise ValueError(f"nu (Poisson ratio) must lie in [0, 0.5] for a layer, got {nu!r}")
-        if not periodic:
-            raise ValueError("layer: a layer is modelled on a periodic window only (periodic=True)")
+        if not periodic and layer.base != "confined":
+            raise ValueError(f"layer: a {layer.base!r} layer bends over the whole window (a plate), which a "
+                             "non-periodic window cuts off: it is modelled on a periodic window only (periodic=True)")
     if isinstance(friction, bool) or not isinstance(friction, numbers.Real) or not math.isfinite(friction) \
             or friction < 0:
         raise ValueError(f"friction (Coulomb coefficient) must be a finite number >= 0, got {friction!r}")
     if isinstance(sliding_direction, bool) or not isinstance(sliding_direction, numbers.Real) \
             or not math.isfinite(sliding_direction):
         raise ValueError(f"sliding_direction must be a finite angle [rad], got {sliding_direction!r}")
+    if layer is not None and not periodic and friction > 0:
+        raise ValueError("friction: on a non-periodic window a layer is modelled frictionless; use periodic=True "
+                         "for Coulomb friction on a layer")
     if method == "active-set" and (layer is not None or friction > 0):
         raise ValueError("method='active-set' solves frictionless half-space contact only: use method='cg' "
                          "with a layer or friction")

@@ -278,10 +278,12 @@ class Compliance:
         ``love``: uniform pressure on each element (Love), summed over periodic images.
     periodic : bool
     transfer : ndarray, optional
-        A periodic spectral normal compliance of another body on the rfft layout [length/pressure]
+        A spectral normal compliance of another body on the rfft layout of the work grid [length/pressure]
         (:attr:`contactlib.kernels.SurfaceGreenTensor.normal`, a layer's), in place of the half-space's:
         real, even, positive for ``q != 0``; its ``q = 0`` entry may be positive (a confined layer's
         uniaxial compliance: the operator is then :attr:`definite`) or 0 (zero-mean displacements).
+        Non-periodic: sampled on the doubled window (:meth:`Grid.padded`), whose images the caller has
+        checked are out of reach (a confined layer's influence dies out over a few thicknesses).
     """
 
     def __init__(self, grid: Grid, *, E_star: float, kernel: str = "spectral", periodic: bool = True,
@@ -294,13 +296,17 @@ class Compliance:
         if transfer is None:
             self.multiplier = _unit_multiplier(grid, kernel, self.periodic) / self.E_star
         else:
-            if not self.periodic or kernel != "spectral":
-                raise ValueError("a layer's compliance is a periodic spectral kernel (periodic=True, kernel='spectral')")
+            if kernel != "spectral":
+                raise ValueError("a layer's compliance is a spectral kernel (kernel='spectral')")
+            expected = Grid(self.work_shape, grid.lengths if self.periodic else grid.padded().lengths).wavenumber().shape
+            if transfer.shape != expected:
+                raise ValueError(f"transfer has shape {transfer.shape}, the work grid's rfft layout {expected}")
             self.multiplier = fft.convolution_multiplier(transfer, self.work_shape)
         self._block = tuple(slice(0, n) for n in grid.shape)
         self._inverse = None
         self._softest = None  # set with _inverse
-        self.preconditionable = transfer is None or _softening(grid, transfer, self.E_star) <= PRECONDITION_SOFTENING
+        work_grid = grid if self.periodic else grid.padded()
+        self.preconditionable = transfer is None or _softening(work_grid, transfer, self.E_star) <= PRECONDITION_SOFTENING
 
     preconditionable: bool
     """Whether the constrained CG preconditions with :attr:`inverse_multiplier`: not for a body more than

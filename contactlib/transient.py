@@ -109,7 +109,7 @@ def solve_transient(
         become ``h(x - X(t))`` (a phase factor on their spectrum: periodic on the window, so an isolated
         indenter must stay clear of the window edge).
     layer : contactlib.Layer, optional
-        A finite layer (periodic windows), as in :func:`contactlib.solve`.
+        A finite layer, as in :func:`contactlib.solve` (a non-periodic window takes a confined one).
     periodic : bool, optional
         As in :func:`contactlib.solve`.
     initial : {"unloaded", "relaxed"}

@@ -1,0 +1,71 @@
+"""A confined layer on a non-periodic window (zero-padded), checked against the periodic layer solver on a
+window 8x wider (the same spacing, the indenter at its centre): there the images are seven windows away, so
+both answer the isolated contact, by different embeddings."""
+
+import numpy as np
+import pytest
+
+import contactlib
+
+
+def _indenter(n, length, dim, radius=1.0):
+    x = (np.arange(n) - n // 2) * (length / n)
+    if dim == 1:
+        return -x**2 / (2 * radius)
+    X, Y = np.meshgrid(x, x, indexing="ij")
+    return -(X**2 + Y**2) / (2 * radius)
+
+
+def _against_wide_periodic(n, dim, nu, thickness, mean_pressure, wider=8):
+    layer = contactlib.Layer(thickness)
+    padded = contactlib.solve(_indenter(n, 1.0, dim), length=1.0, E=1.0, nu=nu, mean_pressure=mean_pressure,
+                              periodic=False, layer=layer, tol=1e-10)
+    wide = contactlib.solve(_indenter(wider * n, float(wider), dim), length=float(wider), E=1.0, nu=nu,
+                            mean_pressure=mean_pressure / wider**dim, periodic=True, layer=layer, tol=1e-10)
+    start = (wider - 1) * n // 2
+    reference = wide.pressure.values[(slice(start, start + n),) * dim]
+    return padded, wide, reference
+
+
+@pytest.mark.parametrize("nu, thickness", [(0.3, 0.05), (0.3, 0.2), (0.5, 0.1)])
+def test_sphere_on_a_confined_layer_matches_a_wide_periodic_window(nu, thickness):
+    padded, wide, reference = _against_wide_periodic(64, 2, nu, thickness, 1e-3)
+    pressure = padded.pressure.values
+    assert padded.attrs["body"] == "layer" and padded.attrs["layer_reach"] <= contactlib.bodies.LAYER_REACH
+    assert 0.01 < float(padded.contact_area) < 0.2  # a contact of 40-800 elements, clear of the window's edge
+    assert np.abs(pressure - reference).max() <= 2e-5 * pressure.max()
+    assert float(padded.penetration) == pytest.approx(float(wide.penetration), rel=1e-5)
+    # the layer matters here: the zero-padded half-space under the same load is far off
+    half = contactlib.solve(_indenter(64, 1.0, 2), length=1.0, E=1.0, nu=nu, mean_pressure=1e-3, periodic=False)
+    assert abs(float(half.penetration) / float(padded.penetration) - 1) > 0.1
+
+
+def test_cylinder_on_a_thin_incompressible_layer_matches_a_wide_periodic_window():
+    """A profile, and an incompressible layer: its uniform mode carries no compliance (the q = 0 entry 0)."""
+    padded, wide, reference = _against_wide_periodic(512, 1, 0.5, 0.05, 5e-4)
+    pressure = padded.pressure.values
+    assert np.abs(pressure - reference).max() <= 2e-5 * pressure.max()
+    assert float(padded.penetration) == pytest.approx(float(wide.penetration), rel=1e-5)
+
+
+def test_creep_relaxation_on_a_padded_layer_follows_the_modulus():
+    """Constant penetration: the contact does not move, so the load relaxes as E(t) exactly."""
+    material = contactlib.Viscoelastic.standard_linear_solid(E0=1.0, E_inf=10.0, tau=1.0, nu=0.3)
+    times = np.linspace(0.0, 3.0, 7)
+    out = contactlib.solve_transient(_indenter(64, 1.0, 2), length=1.0, times=times, material=material,
+                                     penetration=5e-3, periodic=False, layer=contactlib.Layer(0.05))
+    load = out.mean_pressure.values
+    assert np.all(out.contact_area.values == out.contact_area.values[0])
+    np.testing.assert_allclose(load / load[0], material.relaxation(times) / material.relaxation(0.0), rtol=1e-6)
+
+
+@pytest.mark.parametrize("kwargs, name", [
+    ({"layer": contactlib.Layer(0.05, "remote_pressure")}, "layer"),
+    ({"layer": contactlib.Layer(0.05), "friction": 0.3}, "friction"),
+    ({"layer": contactlib.Layer(0.6)}, "layer"),  # still acting a window away
+    ({"layer": contactlib.Layer(0.05), "adhesion": contactlib.Adhesion(work=1e-4, model="jkr")}, "adhesion"),
+])
+def test_padded_layer_refusals_name_the_parameter(kwargs, name):
+    with pytest.raises(ValueError, match=name):
+        contactlib.solve(_indenter(32, 1.0, 2), length=1.0, E=1.0, nu=0.3, mean_pressure=1e-3, periodic=False,
+                         **kwargs)
