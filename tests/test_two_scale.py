@@ -913,3 +913,17 @@ def test_unconverged_steps_say_why():
     assert ts.solve(field, E=1.0, nu=0.5, penetration=approach).attrs["converged"] == 1
     with pytest.raises(contactlib.ConvergenceError, match="the micro scale does not resolve the contacts"):
         ts.solve(field, E=1.0, nu=0.5, mean_pressure=load, max_iter=50)
+
+
+def test_short_range_weights_match_scipy_erfc():
+    """The Ewald pair weights' series (``interaction._erfcx_times``) against scipy's erfc over its whole reach, and
+    scipy itself past it."""
+    from scipy.special import erfc
+
+    from contactlib.two_scale.interaction import ERFC_SERIES_REACH, short_range_weights
+
+    r = np.linspace(1e-9, 1.0, 200_001)
+    for alpha in (0.5, ERFC_SERIES_REACH, 9.0):
+        weights = short_range_weights(alpha, r, 1.3)
+        exact = erfc(alpha * r) / (np.pi * 1.3 * r)
+        assert np.abs(weights / exact - 1).max() <= 2e-13

@@ -53,7 +53,7 @@ from scipy import sparse
 from scipy.special import erfc, erfcinv
 
 from .. import fft
-from .._numba import jit
+from .._numba import jit, vector_jit
 from .asperities import NEIGHBOUR_SPACINGS, AsperityTable
 
 ACCURACY = 1e-7
@@ -135,7 +135,7 @@ class PointInteraction:
         # the table's own arrays (np.asarray with a dtype returns a new view even when it matches, and
         # with_pair_weights recognises the pairs by identity)
         self._pair_k, self._pair_l = (v if v.dtype == np.int64 else v.astype(np.int64) for v in (k, l))
-        self._pair_w = erfc(alpha * r) / (math.pi * self.E_star * r)
+        self._pair_w = short_range_weights(alpha, r, self.E_star)
         self._pair_term = (_NO_PAIRS, _NO_PAIRS)  # no pair term (:meth:`with_pair_weights`)
         self._shift = -2.0 / (math.sqrt(math.pi) * alpha * L * L * self.E_star)
         self_term = -2.0 * alpha / (math.pi**1.5 * self.E_star)
@@ -206,6 +206,52 @@ class PointInteraction:
         _add_short_range(self._pair_k, self._pair_l, self._pair_w, *self._pair_term, forces, self._self_term,
                          self._shift, out)
         return out
+
+
+ERFC_SERIES_REACH = 6.0
+"""``alpha r`` up to which :func:`short_range_weights` uses its series (the sum's reach ``erfcinv(accuracy)`` is 3.8 at
+the default accuracy 1e-7 and 6 at 2e-17); beyond it scipy's ``erfc``."""
+
+
+def short_range_weights(alpha: float, r: np.ndarray, E_star: float) -> np.ndarray:
+    """The Ewald sum's short-range pair weights ``erfc(alpha r) / (pi E* r)`` [length/force] at the distances ``r``
+    [length]: ``exp(-x^2)`` by numpy (vectorised), times ``erfcx(x) = exp(x^2) erfc(x)`` from a polynomial in a
+    compiled loop (:func:`_erfcx_times`), 4x faster than scipy's ``erfc`` (24 against 98 us for 9 300 pairs), within
+    7e-14 of it (tested)."""
+    x = alpha * np.asarray(r, dtype=float)
+    if x.size == 0 or float(x.max()) > ERFC_SERIES_REACH or not float(x.min()) >= 0:
+        return erfc(x) / (math.pi * E_star * r)
+    out = np.exp(-x * x)
+    _erfcx_times(x, r, 1.0 / (math.pi * E_star), out)
+    return out
+
+
+@vector_jit
+def _erfcx_times(x, r, factor, out):
+    """``out *= erfcx(x) factor / r`` for ``0 <= x <= 6``: ``erfcx(x) = P(u)``, ``u = (8/3) / (1 + x/2) - 5/3`` in
+    ``[-1, 1]``, ``P`` of degree 16, the least-squares fit on 400 Chebyshev nodes of ``u`` to scipy's ``erfcx``
+    converted to powers of ``u`` (coefficients below 0.43: no cancellation), relative error 7e-14. Written out,
+    so the loop over the points vectorises (a loop over the coefficients stays scalar: 106 us)."""
+    for i in range(x.size):
+        u = 2.6666666666666665 / (1.0 + 0.5 * x[i]) - 1.6666666666666667
+        p = 2.0210206557075635e-09
+        p = p * u - 7.528241428288992e-09
+        p = p * u - 3.9923154637389215e-09
+        p = p * u + 8.619127828461674e-08
+        p = p * u - 2.0093109467681848e-07
+        p = p * u - 2.818090959567192e-07
+        p = p * u + 2.839640158887232e-06
+        p = p * u - 4.271484258048941e-06
+        p = p * u - 2.2700677067417197e-05
+        p = p * u + 0.00010054202612778083
+        p = p * u + 0.0001335843699470335
+        p = p * u - 0.0016653643890946427
+        p = p * u - 0.0016702444144817198
+        p = p * u + 0.03299342947960249
+        p = p * u + 0.16940759095486727
+        p = p * u + 0.4221875836134096
+        p = p * u + 0.37853741692923765
+        out[i] *= p * factor / r[i]
 
 
 @functools.lru_cache(maxsize=16)
@@ -300,39 +346,40 @@ def _gaussian_factors(centers: np.ndarray, L: float, m: int, s: float, support: 
     reach = support * s / h
     p = int(math.floor(2 * reach + 1e-9)) + 1  # nodes within [c - reach h, c + reach h] along an axis
     n = len(centers)
+    scale = 1.0 / (2 * s * s)
+    # each block's first node and its offset x0 from the centre, and the exponentials of x0 by numpy (vectorised:
+    # math.exp in the loop below, four an asperity, took 30 of its 39 us at 10^3 asperities)
+    first = np.ceil(np.asarray(centers, dtype=float) / h - reach - 1e-9)
+    offset = first * h - centers
+    start = np.exp(offset * offset * -scale) * (1.0 / (math.sqrt(2 * math.pi) * s))
+    ratio = np.exp(offset * (-2.0 * h * scale))
+    steps = np.exp((np.arange(p) * h) ** 2 * -scale)
     rows, cols = np.empty((n, p), np.int64), np.empty(n, np.int64)
     gx, gy = np.empty((n, p)), np.empty((n, p))
-    _fill_gaussians(np.ascontiguousarray(centers, dtype=float), h, m, s, reach, rows, cols, gx, gy)
+    _fill_gaussians(first, start, ratio, steps, m, rows, cols, gx, gy)
     return rows, cols, gx, gy
 
 
 @jit
-def _fill_gaussians(centers, h, m, s, reach, rows, cols, gx, gy):
-    """The factors of :func:`_gaussian_factors`, in one pass (numpy's took 0.3 ms at 10^3 asperities). Along an
-    axis from the first node's offset ``x0``, ``exp(-(x0 + i h)^2 / 2s^2) = exp(-x0^2 / 2s^2) exp(-x0 h / s^2)^i
-    exp(-i^2 h^2 / 2s^2)``: two exponentials per asperity and axis and a table of ``p`` (fast Gaussian gridding,
-    Greengard & Lee, SIAM Rev. 46 (2004) 443), where one per node took 0.1 ms at 10^3 asperities and ``p = 9``;
-    the same factors to a few units of the last place."""
+def _fill_gaussians(first, start, ratio, steps, m, rows, cols, gx, gy):
+    """The factors of :func:`_gaussian_factors` from each block's first node ``first`` (N, 2), its Gaussian
+    ``start`` and ``ratio`` (N, 2) and the table ``steps`` (P,). Along an axis from the first node's offset ``x0``,
+    ``exp(-(x0 + i h)^2 / 2s^2) = exp(-x0^2 / 2s^2) exp(-x0 h / s^2)^i exp(-i^2 h^2 / 2s^2)``: two exponentials per
+    asperity and axis and a table of ``p`` (fast Gaussian gridding, Greengard & Lee, SIAM Rev. 46 (2004) 443),
+    where one per node took 0.1 ms at 10^3 asperities and ``p = 9``; the same factors to a few units of the last
+    place."""
     n, p = gx.shape
-    norm = 1.0 / (math.sqrt(2 * math.pi) * s)
-    scale = 1.0 / (2 * s * s)
-    steps = np.empty(p)
-    for i in range(p):
-        steps[i] = math.exp(-(i * h) * (i * h) * scale)
     for k in range(n):
-        fx = int(math.ceil(centers[k, 0] / h - reach - 1e-9))
-        fy = int(math.ceil(centers[k, 1] / h - reach - 1e-9))
-        cols[k] = fy % m
-        row = fx % m
+        cols[k] = int(first[k, 1]) % m
+        row = int(first[k, 0]) % m
         for i in range(p):
             rows[k, i] = row
             row = row + 1 if row + 1 < m else 0
-        for first, g in ((fx * h - centers[k, 0], gx), (fy * h - centers[k, 1], gy)):
-            ratio = math.exp(-2.0 * first * h * scale)
-            value = norm * math.exp(-first * first * scale)
+        for axis, g in ((0, gx), (1, gy)):
+            value, step = start[k, axis], ratio[k, axis]
             for i in range(p):
                 g[k, i] = value * steps[i]
-                value *= ratio
+                value *= step
 
 
 def _spread(rows, cols, gx, gy, forces, mesh):
