@@ -22,12 +22,14 @@ MAUGIS, EXPONENTIAL = 0, 1
 def law_residual(p, g, model, sigma0, range_, ramp, c, image):
     """``image`` = the adhesive traction ``a(g)`` of the law (:meth:`contactlib.Adhesion.traction`,
     Maugis' step as its ramp of half-width ``ramp * range_``); returns ``(sum |phi|, sum max(-g, 0),
-    sum |p_r| |g|, sum |p_r|)`` with ``phi = c g`` where the repulsive part ``p_r = p - a(g)`` exceeds
-    ``c g``, else ``p_r``."""
+    sum |p_r| |g|, sum |p_r|, sum |p|, the points within the range)`` with ``phi = c g`` where the repulsive
+    part ``p_r = p - a(g)`` exceeds ``c g``, else ``p_r``."""
     phi_sum = 0.0
     overlap = 0.0
     comp = 0.0
     weight = 0.0
+    traction = 0.0
+    interacting = 0
     for i in range(p.size):
         gi = g[i]
         gp = max(gi, 0.0)
@@ -43,7 +45,10 @@ def law_residual(p, g, model, sigma0, range_, ramp, c, image):
         overlap += max(-gi, 0.0)
         comp += abs(repulsive) * abs(gi)
         weight += abs(repulsive)
-    return phi_sum, overlap, comp, weight
+        traction += abs(p[i])
+        if gi <= range_:
+            interacting += 1
+    return phi_sum, overlap, comp, weight, traction, interacting
 
 
 @_jit

@@ -34,7 +34,9 @@ Two methods, tried in this order:
 
 A solve that does not meet ``tol`` comes back ``converged=False``. The residual is scale-free: the mean
 ``|phi| / c``, the interpenetration and the repulsive traction's weighted mean gap (``sum |p_r| |g| / sum |p_r|``,
-the weights floored at ``sigma_0 + |P|`` a point) over the rms height, and the load error over ``sigma_0 + |P|``.
+the weights floored at ``sigma_0 + |P|`` a point) over the rms height, the load error over ``sigma_0 + |P|``, and
+the law's own error over the tractions present (:meth:`.cohesive_newton.CohesiveNewton.law_term`), which the
+window's size and roughness do not dilute.
 The third is the non-adhesive solvers' complementarity term: ``|phi| / c`` alone weighs a traction error by what it
 would displace one element, and let a state with no contact through at tol 1e-3.
 The interpenetration is the mean one for the frozen traction, as for the non-adhesive solvers (whose
@@ -332,10 +334,11 @@ class _FrozenTraction:
         the gap ``g`` into ``image``."""
         m, law = self.measure, self.law
         code = sweeps.MAUGIS if law.model == "maugis" else sweeps.EXPONENTIAL
-        phi_sum, overlap, comp, weight = sweeps.law_residual(
+        phi_sum, overlap, comp, weight, traction, interacting = sweeps.law_residual(
             np.ascontiguousarray(p).ravel(), np.ascontiguousarray(g).ravel(), code, law.peak_stress, law.range,
             MAUGIS_RAMP, m.c, image.reshape(-1))
         residual = max(phi_sum / m.c, overlap, m.complementarity(comp, weight)) / (p.size * m.hs)
+        residual = max(residual, m.law_term(phi_sum, traction, interacting))
         if m.control:
             residual = max(residual, abs(float(p.mean()) - m.load) / m.pscale)
         return residual
