@@ -135,8 +135,8 @@ def solve(
         ``0 <= nu <= 0.5``. A confined compressible layer has a finite uniaxial stiffness, so its
         penetration is measured from the undeformed surface; the others' mean displacement is
         undetermined (zero-mean, as for the half-space). ``periodic=False`` takes a confined layer,
-        frictionless and without adhesion, zero-padded: refused where its influence still reaches a
-        window's length away (:data:`contactlib.bodies.LAYER_REACH`).
+        frictionless, zero-padded: refused where its influence still reaches a window's length away
+        (:data:`contactlib.bodies.LAYER_REACH`).
     friction : float
         Coulomb coefficient ``mu_c >= 0``: on the contact the body carries the tangential traction
         ``mu_c p`` along ``sliding_direction``. Through the normal-tangential terms of the Green's
@@ -454,9 +454,6 @@ def _setup(heights, *, material, mean_pressure, penetration, periodic, tol, max_
     if method not in METHODS:
         raise ValueError(f"method must be one of {METHODS}, got {method!r}")
     check_friction(layer, friction, sliding_direction, nu, method, kernel, periodic)
-    if adhesion is not None and layer is not None and not periodic:
-        raise ValueError("adhesion: adhesive contact on a layer is modelled on a periodic window (periodic=True); a "
-                         "non-periodic window takes a layer without adhesion")
     velocity, sliding_direction = check_velocity(sliding_velocity, sliding_direction, grid.dim, material, method,
                                                   periodic)
     if grid.dim == 1:

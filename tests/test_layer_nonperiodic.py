@@ -59,11 +59,29 @@ def test_creep_relaxation_on_a_padded_layer_follows_the_modulus():
     np.testing.assert_allclose(load / load[0], material.relaxation(times) / material.relaxation(0.0), rtol=1e-6)
 
 
+@pytest.mark.parametrize("law", [contactlib.Adhesion(work=1e-4, range=4e-3, model="maugis"),
+                                 contactlib.Adhesion(work=1e-4, model="jkr")])
+def test_adhesive_sphere_on_a_padded_layer_matches_a_wide_periodic_window(law):
+    """Adhesion on the padded layer (a cohesive law with a process zone of 9 elements, and the JKR limit): the
+    same contact as on a periodic window 4x wider."""
+    n, wider, layer = 64, 4, contactlib.Layer(0.05)
+    padded = contactlib.solve(_indenter(n, 1.0, 2), length=1.0, E=1.0, nu=0.3, adhesion=law, layer=layer,
+                              periodic=False, penetration=1.5e-3, tol=1e-8)
+    wide = contactlib.solve(_indenter(wider * n, float(wider), 2), length=float(wider), E=1.0, nu=0.3, adhesion=law,
+                            layer=layer, periodic=True, penetration=1.5e-3, tol=1e-8)
+    start = (wider - 1) * n // 2
+    reference = wide.pressure.values[start:start + n, start:start + n]
+    pressure = padded.pressure.values
+    assert float(padded.mean_pressure) < 0  # held by adhesion
+    assert np.abs(pressure - reference).max() <= 1e-4 * np.abs(pressure).max()
+    assert float(padded.mean_pressure) == pytest.approx(float(wide.mean_pressure) * wider**2, rel=1e-4)
+    assert float(padded.contact_area) * n**2 == float(wide.contact_area) * (wider * n) ** 2
+
+
 @pytest.mark.parametrize("kwargs, name", [
     ({"layer": contactlib.Layer(0.05, "remote_pressure")}, "layer"),
     ({"layer": contactlib.Layer(0.05), "friction": 0.3}, "friction"),
     ({"layer": contactlib.Layer(0.6)}, "layer"),  # still acting a window away
-    ({"layer": contactlib.Layer(0.05), "adhesion": contactlib.Adhesion(work=1e-4, model="jkr")}, "adhesion"),
 ])
 def test_padded_layer_refusals_name_the_parameter(kwargs, name):
     with pytest.raises(ValueError, match=name):
