@@ -93,10 +93,13 @@ def _errors(forces, contact_area, pressure, reference, reference_forces) -> dict
 
 def compare_methods(*, count: int, coverage: float, seed: int, nodes_per_radius: float, full_tol: float,
                     two_scale_tol: float, repeats: int, E: float, nu: float, tol: float,
-                    two_scale_force_tol: float | None = None) -> dict:
+                    two_scale_force_tol: float | None = None, block: int = 1) -> dict:
     """Errors and median wall times of the macro step, the two-scale method and the full solver on one
     field (see the module docstring); ``tol``: the reference solve's. ``two_scale_force_tol``: run the
-    two-scale method with ``force_tol=`` (the stop on the asperity forces) instead of ``tol=two_scale_tol``."""
+    two-scale method with ``force_tol=`` (the stop on the asperity forces) instead of ``tol=two_scale_tol``.
+    ``block``: each method runs this many solves in a row in each of the ``repeats`` rounds, all timed (1: the
+    three interleaved solve by solve; more: each method mostly in the steady state of a sweep of its own, after
+    its own solves rather than the others', the rounds still alternating the methods under the same load)."""
     nps = nodes_per_spacing(coverage, nodes_per_radius)
     field = two_scale.random_asperity_field(int(count), coverage=coverage, nodes_per_spacing=nps, seed=int(seed),
                                             n=grid_points(count, coverage, nodes_per_radius))
@@ -115,10 +118,11 @@ def compare_methods(*, count: int, coverage: float, seed: int, nodes_per_radius:
     cpu = {name: [] for name in solvers}  # CPU time beside wall time: less sensitive to other jobs' load
     for _ in range(int(repeats)):
         for name, run in solvers.items():  # interleaved: a change of the machine's load hits all alike
-            start, start_cpu = time.perf_counter(), time.process_time()
-            run()
-            times[name].append(time.perf_counter() - start)
-            cpu[name].append(time.process_time() - start_cpu)
+            for _ in range(int(block)):
+                start, start_cpu = time.perf_counter(), time.process_time()
+                run()
+                times[name].append(time.perf_counter() - start)
+                cpu[name].append(time.process_time() - start_cpu)
     macro_fields = two_scale.solve(field, E=E, nu=nu, penetration=approach, scale="macro")  # untimed
     row = {"n": field.shape[0], "in_contact": int(np.count_nonzero(reference_forces)),
            "residual": float(reference.residual),  # the reference's: the errors are measured against it
