@@ -19,7 +19,8 @@ pressure of each macro force). Times: one warm-up solve of each (FFT plans, JIT)
 solves interleaved (macro, two-scale, full in turn) and the median; ratios are full / method from the
 same run. With ``--block k`` each round runs each method ``k`` times in a row (all timed, the median over all):
 the macro step then mostly runs after its own solves, as a sweep of it does, instead of after a full solve whose
-700^2 arrays have emptied the caches (2.3 against 3.0 ms at 10^3 asperities); the rounds still alternate. Each field runs in a fresh interpreter (``--same-process`` to opt out; :func:`run_isolated` says why);
+700^2 arrays have emptied the caches (2.3 against 3.0 ms at 10^3 asperities); the rounds still alternate. Each
+field runs in a fresh interpreter (``--same-process`` to opt out; :func:`run_isolated` says why);
 ``--allocator keep`` runs them with glibc keeping freed memory mapped (no page faults on reuse). Grids above
 ``--max-nodes`` points per side are skipped (the full solver's memory and time on a small machine), and said so.
 

@@ -30,6 +30,7 @@ import xarray as xr
 
 from . import fft
 from .grid import Grid
+from .solvers.state import height_scale
 
 REFERENCE_FACTOR = 4
 """The rough references of the study are this much finer: with ``error = C ppw**-p`` against the
@@ -138,16 +139,20 @@ on windows of 1, 4 and 8 radii (rms height over approach 53, 843, 3373) kept a p
 6.4e-3 at tol 1e-6."""
 
 
+TIGHTEST_TOL = 1e-12
+""":func:`tolerance_for_scene` tightens no further: the study's references were solved at this tol, and a solver's
+residual stalls near 1e-14 (a flat punch pressed by 1e-12 of its rms height asked for 1.1e-16)."""
+
+
 def tolerance_for_scene(tol: float, heights: np.ndarray, penetration: float) -> float:
     """:func:`tolerance_for`'s ``tol`` for a scene whose ``penetration`` [length] is below the rms of its ``heights``
-    over :data:`PENETRATION_RATIO`: ``tol`` times their ratio over it, so that the gaps the residual allows stay as
-    small beside the approach as in the scenes the rule was measured on; ``tol`` itself otherwise."""
+    (the residual's scale, :func:`contactlib.solvers.state.height_scale`) over :data:`PENETRATION_RATIO`: ``tol`` times
+    their ratio over it, no tighter than :data:`TIGHTEST_TOL`, so that the gaps the residual allows stay as small beside
+    the approach as in the scenes the rule was measured on; ``tol`` itself otherwise."""
     if not (math.isfinite(penetration) and penetration > 0):
         return tol
-    values = np.asarray(heights, dtype=float)
-    rms = float(np.sqrt(np.mean((values - values.mean()) ** 2)))
-    ratio = rms / penetration
-    return tol if ratio <= PENETRATION_RATIO else tol * PENETRATION_RATIO / ratio
+    ratio = height_scale(np.asarray(heights, dtype=float)) / penetration
+    return tol if ratio <= PENETRATION_RATIO else max(tol * PENETRATION_RATIO / ratio, min(tol, TIGHTEST_TOL))
 
 
 def settings_for(target_error: float, *, quantity: str = "contact_area", q_cutoff: float | None = None) -> dict:

@@ -291,22 +291,23 @@ class Compliance:
         if kernel not in KERNELS:
             raise ValueError(f"kernel must be one of {KERNELS}, got {kernel!r}")
         self.grid, self.E_star, self.kernel, self.periodic = grid, float(E_star), kernel, bool(periodic)
-        self.work_shape = grid.shape if periodic else grid.padded().shape
+        work_grid = grid if self.periodic else grid.padded()
+        self.work_shape = work_grid.shape
         self._transfer = transfer
         if transfer is None:
             self.multiplier = _unit_multiplier(grid, kernel, self.periodic) / self.E_star
         else:
             if kernel != "spectral":
                 raise ValueError("a layer's compliance is a spectral kernel (kernel='spectral')")
-            expected = Grid(self.work_shape, grid.lengths if self.periodic else grid.padded().lengths).wavenumber().shape
+            expected = work_grid.wavenumber().shape
             if transfer.shape != expected:
                 raise ValueError(f"transfer has shape {transfer.shape}, the work grid's rfft layout {expected}")
             self.multiplier = fft.convolution_multiplier(transfer, self.work_shape)
         self._block = tuple(slice(0, n) for n in grid.shape)
         self._inverse = None
         self._softest = None  # set with _inverse
-        work_grid = grid if self.periodic else grid.padded()
-        self.preconditionable = transfer is None or _softening(work_grid, transfer, self.E_star) <= PRECONDITION_SOFTENING
+        self.preconditionable = transfer is None or \
+            _softening(work_grid, transfer, self.E_star) <= PRECONDITION_SOFTENING
 
     preconditionable: bool
     """Whether the constrained CG preconditions with :attr:`inverse_multiplier`: not for a body more than

@@ -27,11 +27,12 @@ def _against_wide_periodic(n, dim, nu, thickness, mean_pressure, wider=8):
     return padded, wide, reference
 
 
-@pytest.mark.parametrize("nu, thickness", [(0.3, 0.05), (0.3, 0.2), (0.5, 0.1)])
+@pytest.mark.parametrize("nu, thickness", [(0.3, 0.05), (0.3, 0.15), (0.5, 0.1)])
 def test_sphere_on_a_confined_layer_matches_a_wide_periodic_window(nu, thickness):
     padded, wide, reference = _against_wide_periodic(64, 2, nu, thickness, 1e-3)
     pressure = padded.pressure.values
-    assert padded.attrs["body"] == "layer" and padded.attrs["layer_reach"] <= contactlib.bodies.LAYER_REACH
+    assert padded.attrs["body"] == "layer"
+    assert padded.attrs["layer_window_thicknesses"] >= contactlib.bodies.LAYER_WINDOW
     assert 0.01 < float(padded.contact_area) < 0.2  # a contact of 40-800 elements, clear of the window's edge
     assert np.abs(pressure - reference).max() <= 2e-5 * pressure.max()
     assert float(padded.penetration) == pytest.approx(float(wide.penetration), rel=1e-5)
@@ -49,14 +50,19 @@ def test_cylinder_on_a_thin_incompressible_layer_matches_a_wide_periodic_window(
 
 
 def test_creep_relaxation_on_a_padded_layer_follows_the_modulus():
-    """Constant penetration: the contact does not move, so the load relaxes as E(t) exactly."""
+    """Constant penetration: the contact does not move, so the load relaxes as E(t) exactly, from the glassy
+    load that the periodic solver gives on a window 4x wider."""
     material = contactlib.Viscoelastic.standard_linear_solid(E0=1.0, E_inf=10.0, tau=1.0, nu=0.3)
     times = np.linspace(0.0, 3.0, 7)
+    layer = contactlib.Layer(0.05)
     out = contactlib.solve_transient(_indenter(64, 1.0, 2), length=1.0, times=times, material=material,
-                                     penetration=5e-3, periodic=False, layer=contactlib.Layer(0.05))
+                                     penetration=5e-3, periodic=False, layer=layer)
     load = out.mean_pressure.values
     assert np.all(out.contact_area.values == out.contact_area.values[0])
     np.testing.assert_allclose(load / load[0], material.relaxation(times) / material.relaxation(0.0), rtol=1e-6)
+    glassy = contactlib.solve(_indenter(256, 4.0, 2), length=4.0, E=10.0, nu=0.3, penetration=5e-3, periodic=True,
+                              layer=layer, tol=1e-10)
+    assert load[0] == pytest.approx(float(glassy.mean_pressure) * 16, rel=1e-5)
 
 
 @pytest.mark.parametrize("law", [contactlib.Adhesion(work=1e-4, range=4e-3, model="maugis"),
@@ -81,9 +87,19 @@ def test_adhesive_sphere_on_a_padded_layer_matches_a_wide_periodic_window(law):
 @pytest.mark.parametrize("kwargs, name", [
     ({"layer": contactlib.Layer(0.05, "remote_pressure")}, "layer"),
     ({"layer": contactlib.Layer(0.05), "friction": 0.3}, "friction"),
-    ({"layer": contactlib.Layer(0.6)}, "layer"),  # still acting a window away
+    ({"layer": contactlib.Layer(0.6)}, "layer"),  # acting across the window
+    ({"layer": contactlib.Layer(1.0 / 5.9)}, "layer"),  # just under six thicknesses
 ])
 def test_padded_layer_refusals_name_the_parameter(kwargs, name):
     with pytest.raises(ValueError, match=name):
-        contactlib.solve(_indenter(32, 1.0, 2), length=1.0, E=1.0, nu=0.3, mean_pressure=1e-3, periodic=False,
+        contactlib.solve(_indenter(128, 1.0, 2), length=1.0, E=1.0, nu=0.3, mean_pressure=1e-3, periodic=False,
                          **kwargs)
+
+
+@pytest.mark.parametrize("n", [32, 256])
+def test_padded_layer_window_rule_does_not_depend_on_the_grid(n):
+    """Six thicknesses across, on a coarse grid and a fine one, is taken; the rule is the window's, not the
+    elements'."""
+    out = contactlib.solve(_indenter(n, 1.0, 2), length=1.0, E=1.0, nu=0.3, mean_pressure=1e-3, periodic=False,
+                           layer=contactlib.Layer(1.0 / 6.0))
+    assert out.attrs["body"] == "layer" and out.attrs["layer_window_thicknesses"] == pytest.approx(6.0)

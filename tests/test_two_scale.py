@@ -927,3 +927,5 @@ def test_short_range_weights_match_scipy_erfc():
         weights = short_range_weights(alpha, r, 1.3)
         exact = erfc(alpha * r) / (np.pi * 1.3 * r)
         assert np.abs(weights / exact - 1).max() <= 2e-13
+    grid = r[: 200 * 1000].reshape(200, 1000)  # any shape, as scipy's
+    np.testing.assert_allclose(short_range_weights(2.0, grid, 1.3), erfc(2.0 * grid) / (np.pi * 1.3 * grid), rtol=2e-13)

@@ -8,8 +8,8 @@ Hertz contact radius (the same grid for the full solver and the micro scale: mat
 the approach that indents an asperity of mean height by ``APPROACH`` of its height. Displacement
 control, so the total force is an output of every method. Errors against the full solver at
 ``tol`` (the reference); times of the full solver at ``full_tol``, the two-scale method at
-``two_scale_tol`` and the macro step, each the median of ``repeats`` interleaved solves after a
-warm-up (FFT plans, JIT).
+``two_scale_tol`` and the macro step, each the median of ``repeats`` interleaved rounds of ``block``
+solves in a row (the study: one) after a warm-up (FFT plans, JIT).
 """
 
 from __future__ import annotations
@@ -100,6 +100,8 @@ def compare_methods(*, count: int, coverage: float, seed: int, nodes_per_radius:
     ``block``: each method runs this many solves in a row in each of the ``repeats`` rounds, all timed (1: the
     three interleaved solve by solve; more: each method mostly in the steady state of a sweep of its own, after
     its own solves rather than the others', the rounds still alternating the methods under the same load)."""
+    if int(block) < 1:
+        raise ValueError(f"block must be >= 1 (solves of each method in a row), got {block!r}")
     nps = nodes_per_spacing(coverage, nodes_per_radius)
     field = two_scale.random_asperity_field(int(count), coverage=coverage, nodes_per_spacing=nps, seed=int(seed),
                                             n=grid_points(count, coverage, nodes_per_radius))

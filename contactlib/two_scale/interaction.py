@@ -218,12 +218,13 @@ def short_range_weights(alpha: float, r: np.ndarray, E_star: float) -> np.ndarra
     [length]: ``exp(-x^2)`` by numpy (vectorised), times ``erfcx(x) = exp(x^2) erfc(x)`` from a polynomial in a
     compiled loop (:func:`_erfcx_times`), 4x faster than scipy's ``erfc`` (24 against 98 us for 9 300 pairs), within
     7e-14 of it (tested)."""
-    x = alpha * np.asarray(r, dtype=float)
+    r = np.asarray(r, dtype=float)
+    x = alpha * r.ravel()  # the compiled loop walks flat arrays
     if x.size == 0 or float(x.max()) > ERFC_SERIES_REACH or not float(x.min()) >= 0:
-        return erfc(x) / (math.pi * E_star * r)
+        return erfc(alpha * r) / (math.pi * E_star * r)
     out = np.exp(-x * x)
-    _erfcx_times(x, r, 1.0 / (math.pi * E_star), out)
-    return out
+    _erfcx_times(x, r.ravel(), 1.0 / (math.pi * E_star), out)
+    return out.reshape(r.shape)
 
 
 @vector_jit
