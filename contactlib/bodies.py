@@ -241,7 +241,7 @@ influence falls exponentially over its thickness, slowest when incompressible, s
 many thicknesses on its shortest side. Measured against a periodic window 8x wider (tol 1e-10; a sphere on 64^2 at a
 contact radius of about 0.07 of the window, a cylinder on 512 points): at 6 thicknesses the penetration within 2.9e-7
 / 1.5e-5 (2D, nu = 0.3 / 0.5) and 5.0e-7 / 5.2e-5 (1D), at 5 within 1.1e-6 / 5.7e-5 and 3.2e-6 / 2.1e-4, at 2.5
-within 6.8e-5 / 1.6e-3 and 2.4e-4 / 6.8e-3; the pressure within 1.4e-6 to 1.1e-5 of its peak at 6 (the band-limited
+within 6.8e-5 / 1.6e-3 and 2.4e-4 / 6.8e-3; the pressure within 1.2e-6 to 1.1e-5 of its peak at 6 (the band-limited
 kernel's own ripple). A criterion on the influence itself, over the element's own, falls with the element's size: it
 let a layer as thick as the window through on 256^2 (penetration 2.2e-3 off) and refused thin ones on 32^2."""
 
