@@ -21,6 +21,7 @@ and ``contactlib.solve(..., target_error=...)`` uses them (it picks ``tol`` and 
 
 from __future__ import annotations
 
+import dataclasses
 import math
 import numbers
 import warnings
@@ -153,6 +154,30 @@ def tolerance_for_scene(tol: float, heights: np.ndarray, penetration: float) -> 
         return tol
     ratio = height_scale(np.asarray(heights, dtype=float)) / penetration
     return tol if ratio <= PENETRATION_RATIO else max(tol * PENETRATION_RATIO / ratio, min(tol, TIGHTEST_TOL))
+
+
+def solve_on_for_scene(setup, state):
+    """``contactlib.solve(..., target_error=)``'s rule measured its tol where the approach is about the rms height;
+    far below it, solve ``setup`` (the validated problem of :func:`contactlib.solve`) on from ``state`` to
+    :func:`tolerance_for_scene`'s tighter tol, recorded in its attrs; the state reached (its iterations both solves').
+    Where that solve does not converge, ``state`` stands, with an :class:`AccuracyWarning`."""
+    tol = setup.solver_args["tol"]
+    tighter = tolerance_for_scene(tol, setup.values, state.penetration)
+    if not (tighter < tol and state.converged):
+        return state
+    setup.solver_args.update(tol=tighter, initial_pressure=state.pressure)  # the active-set method starts afresh
+    try:
+        finer = setup.run()
+    except (RuntimeError, FloatingPointError):  # a solver's ConvergenceError among them
+        finer = None
+    if finer is None or not finer.converged:
+        setup.solver_args["tol"] = tol
+        warnings.warn(f"target_error: the approach {state.penetration:.3g} is far below the rms height, and the "
+                      f"tighter tol {tighter:.2g} that asks was not reached: the answer is at the rule's tol {tol:.2g} "
+                      "and may miss the target", AccuracyWarning, stacklevel=3)
+        return state
+    setup.attrs["tol"] = tighter
+    return dataclasses.replace(finer, iterations=state.iterations + finer.iterations)
 
 
 def settings_for(target_error: float, *, quantity: str = "contact_area", q_cutoff: float | None = None) -> dict:

@@ -5,7 +5,6 @@ from __future__ import annotations
 import dataclasses
 import math
 import time
-import warnings
 
 import numpy as np
 import xarray as xr
@@ -189,34 +188,11 @@ def solve(
     start = time.perf_counter()
     state = setup.run()
     if target_error is not None and adhesion is None:
-        state = _tighten_for_scene(setup, state)
+        state = accuracy.solve_on_for_scene(setup, state)
     wall = time.perf_counter() - start
     ds = setup.label(state, wall, length_unit=length_unit, pressure_unit=pressure_unit)
     setup.check(state, ds)
     return ds
-
-
-def _tighten_for_scene(setup, state: ContactState) -> ContactState:
-    """``target_error``'s rule measured its tol where the approach is about the rms height; far below it, solve on
-    from ``state`` to :func:`contactlib.accuracy.tolerance_for_scene`'s tighter tol (recorded in the attrs). Where
-    that solve does not converge, ``state`` stands, with an :class:`contactlib.accuracy.AccuracyWarning`."""
-    tol = setup.solver_args["tol"]
-    tighter = accuracy.tolerance_for_scene(tol, setup.values, state.penetration)
-    if not (tighter < tol and state.converged):
-        return state
-    setup.solver_args.update(tol=tighter, initial_pressure=state.pressure)  # the active-set method starts afresh
-    try:
-        finer = setup.run()
-    except (ConvergenceError, FloatingPointError):
-        finer = None
-    if finer is None or not finer.converged:
-        setup.solver_args["tol"] = tol
-        warnings.warn(f"target_error: the approach {state.penetration:.3g} is far below the rms height, and the "
-                      f"tighter tol {tighter:.2g} that asks was not reached: the answer is at the rule's tol {tol:.2g} "
-                      "and may miss the target", accuracy.AccuracyWarning, stacklevel=3)
-        return state
-    setup.attrs["tol"] = tighter
-    return dataclasses.replace(finer, iterations=state.iterations + finer.iterations)  # both solves' work
 
 
 def solve_tolerances(

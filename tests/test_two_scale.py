@@ -916,11 +916,11 @@ def test_unconverged_steps_say_why():
 
 
 def test_short_range_weights_match_scipy_erfc():
-    """The Ewald pair weights' series (``interaction._erfcx_times``) against scipy's erfc over its whole reach, and
+    """The Ewald pair weights' series (``ewald_weights._erfcx_times``) against scipy's erfc over its whole reach, and
     scipy itself past it."""
     from scipy.special import erfc
 
-    from contactlib.two_scale.interaction import ERFC_SERIES_REACH, short_range_weights
+    from contactlib.two_scale.ewald_weights import ERFC_SERIES_REACH, short_range_weights
 
     r = np.linspace(1e-9, 1.0, 200_001)
     for alpha in (0.5, ERFC_SERIES_REACH, 9.0):
