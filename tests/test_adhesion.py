@@ -628,7 +628,7 @@ def test_cohesive_sphere_does_not_depend_on_the_window(model, range_, penetratio
     """A sphere's adhesive contact on a window 4x wider (same spacing, a resolved process zone of 4.4 elements) is
     the same contact: the residual's law term (``CohesiveNewton.law_term``) is not diluted by the window. Before
     it, the wide window came back converged with no adhesive traction (maugis, d = 0: force 0 against -4.3e-4,
-    21 closed points against 277) or a third of it."""
+    21 closed points against 277) or less than half of it."""
     law = Adhesion(work=1e-4, range=range_, model=model)
     out = []
     for n, length in ((128, 1.0), (512, 4.0)):
