@@ -7,9 +7,9 @@ The rule, in one place:
   half-space's at every non-zero wavevector of the grid is modelled as the half-space (its
   ``q = 0`` compliance kept: a confined compressible layer's uniform compression fixes where the
   penetration is measured from);
-* on a non-periodic window a confined layer (frictionless) is the periodic layer of the doubled window loaded on
-  the window alone, on a window of at least :data:`LAYER_WINDOW` thicknesses, never the half-space (which holds
-  the longest waves, where a layer differs most);
+* on a non-periodic window a confined layer is the periodic model of the doubled window (friction's coupling
+  included) applied to the window alone, on a window of at least :data:`LAYER_WINDOW` thicknesses, never the
+  half-space (which holds the longest waves, where a layer differs most);
 * the normal-tangential coupling is left out where ``friction = 0`` or where ``friction * |c(q)| /
   Czz(q) <= 0.1 tol`` at every wavevector (``nu = 0.5`` on a half-space: exactly 0);
 * a viscoelastic body in steady sliding is modelled elastic, with its relaxed modulus ``E0`` (or its
@@ -129,11 +129,8 @@ def body_model(grid: Grid, *, material, layer: Layer | None, friction: float, di
     E_star = E / (1 - nu**2)
     if layer is not None:
         attrs.update(layer_thickness=float(layer.thickness), layer_base=layer.base)
-    if not periodic and layer is not None:  # a confined frictionless layer (the others are refused before)
-        compliance, layer_attrs = _padded_layer(grid, E_star, E, nu, layer)
-        attrs.update(layer_attrs)
-        attrs["model"] += note_material
-        return BodyModel(compliance, None, None, attrs)
+    if not periodic and layer is not None:  # a confined layer (a plate and steady sliding are refused before)
+        return _padded_layer(grid, material=material, layer=layer, friction=friction, direction=direction, tol=tol)
     if not periodic:  # zero-padded half-space (steady viscoelastic sliding is refused before)
         coupled = friction > 0 and nu < 0.5
         coupling = Coupling(grid, periodic=False, friction=friction,
@@ -246,12 +243,13 @@ kernel's own ripple). A criterion on the influence itself, over the element's ow
 let a layer as thick as the window through on 256^2 (penetration 2.2e-3 off) and refused thin ones on 32^2."""
 
 
-def _padded_layer(grid: Grid, E_star: float, E: float, nu: float, layer: Layer) -> tuple[Compliance, dict]:
-    """A confined layer on a non-periodic window: its compliance on the doubled window and the attrs naming it.
-    Refused (``ValueError``) on a window narrower than :data:`LAYER_WINDOW` thicknesses. Never reduced to the
-    half-space: the zero-padded half-space holds every wavelength, the longest ones included, where a layer much
-    thicker than the window still differs (its base lowers the whole window's displacement, by about the contact's
-    size over the thickness)."""
+def _padded_layer(grid: Grid, *, material, layer: Layer, friction: float, direction: float, tol: float) -> BodyModel:
+    """A confined layer on a non-periodic window: the periodic model of the doubled window (:func:`body_model`, its
+    reductions and friction's coupling with it), its operators applied to the window alone. Refused
+    (``ValueError``) on a window narrower than :data:`LAYER_WINDOW` thicknesses. Never reduced to the half-space:
+    the zero-padded half-space holds every wavelength, the longest ones included, where a layer much thicker than the
+    window still differs (its base lowers the whole window's displacement, by about the contact's size over the
+    thickness)."""
     thicknesses = min(grid.lengths) / layer.thickness
     if thicknesses < LAYER_WINDOW:
         raise ValueError(
@@ -260,11 +258,18 @@ def _padded_layer(grid: Grid, E_star: float, E: float, nu: float, layer: Layer) 
             f"window's images. Widen the window to at least {LAYER_WINDOW * layer.thickness:g}, use periodic=True, "
             "or, for a layer far thicker than the contact, leave it out (the half-space)")
     padded = grid.padded()
-    normal = surface_green_tensor(padded, E, nu, layer.thickness, layer.base).normal
-    attrs = {"layer_thickness": float(layer.thickness), "layer_base": layer.base, "body": "layer", "coupling": "none",
-             "layer_window_thicknesses": thicknesses,
-             "model": f"{layer.base} layer, h = {layer.thickness:g}, zero-padded ({thicknesses:.3g} thicknesses wide)"}
-    return Compliance(grid, E_star=E_star, periodic=False, transfer=normal), attrs
+    doubled = body_model(padded, material=material, layer=layer, friction=friction, direction=direction, tol=tol,
+                         kernel="spectral", periodic=True)
+    # the doubled window's transfers, now on zero-padded fields (its multipliers hold the 1 / (2N)^d of the FFT pair)
+    normal = doubled.compliance.transfer
+    if normal is None:  # reduced to the half-space there (not at six thicknesses and more): the layer's own kernel
+        normal = surface_green_tensor(padded, material.E0, float(material.nu), layer.thickness, layer.base).normal
+    coupling = None if doubled.coupling is None else \
+        Coupling(grid, periodic=False, friction=1.0, transfer=doubled.coupling.transfer)
+    attrs = {**doubled.attrs, "layer_window_thicknesses": thicknesses,
+             "model": doubled.attrs["model"] + f", zero-padded ({thicknesses:.3g} thicknesses wide)"}
+    return BodyModel(Compliance(grid, E_star=doubled.compliance.E_star, periodic=False, transfer=normal), coupling,
+                     None, attrs)
 
 
 _HALFSPACE: contextvars.ContextVar[list | None] = contextvars.ContextVar("halfspace_tensor", default=None)

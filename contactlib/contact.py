@@ -138,8 +138,7 @@ def solve(
         ``0 <= nu <= 0.5``. A confined compressible layer has a finite uniaxial stiffness, so its
         penetration is measured from the undeformed surface; the others' mean displacement is
         undetermined (zero-mean, as for the half-space). ``periodic=False`` takes a confined layer,
-        frictionless, zero-padded, on a window of at least :data:`contactlib.bodies.LAYER_WINDOW` (6)
-        thicknesses.
+        zero-padded, on a window of at least :data:`contactlib.bodies.LAYER_WINDOW` (6) thicknesses.
     friction : float
         Coulomb coefficient ``mu_c >= 0``: on the contact the body carries the tangential traction
         ``mu_c p`` along ``sliding_direction``. Through the normal-tangential terms of the Green's

@@ -166,9 +166,6 @@ def check_friction(layer, friction, sliding_direction, nu, method, kernel, perio
     if isinstance(sliding_direction, bool) or not isinstance(sliding_direction, numbers.Real) \
             or not math.isfinite(sliding_direction):
         raise ValueError(f"sliding_direction must be a finite angle [rad], got {sliding_direction!r}")
-    if layer is not None and not periodic and friction > 0:
-        raise ValueError("friction: on a non-periodic window a layer is modelled frictionless; use periodic=True "
-                         "for Coulomb friction on a layer")
     if method == "active-set" and (layer is not None or friction > 0):
         raise ValueError("method='active-set' solves frictionless half-space contact only: use method='cg' "
                          "with a layer or friction")
