@@ -100,7 +100,11 @@ def solve(
         Displacement control: rigid approach from first contact of the highest point [length].
         Periodic displacements are zero-mean (the q = 0 mode of a half-space is infinite), so the
         approach is measured against the mean deformed plane; beyond full contact it does not fix
-        the load and is refused.
+        the load and is refused. A non-periodic profile (1D): a half-plane's displacement is defined up
+        to a constant, fixed at zero one window length from a line load
+        (:func:`contactlib.kernels.elastic.halfspace_love_influence`), so the load that a penetration
+        gives depends on the window (a cylinder pressed by 1e-3: 23 % apart on windows of one and four
+        radii); load control does not.
     periodic : bool, optional
         Periodic window or an isolated footprint (zero padding, free boundary). Default: the heights'
         ``attrs['periodic']`` where a DataArray has it (a measured surface from
