@@ -233,3 +233,13 @@ def test_target_error_holds_for_a_small_contact_in_a_wide_window(control):
     error = np.linalg.norm(out.pressure.values - reference.pressure.values) / np.linalg.norm(reference.pressure.values)
     assert error <= 1e-3
     assert float(out.mean_pressure) == pytest.approx(float(reference.mean_pressure), rel=1e-3)
+
+
+def test_target_error_tightening_stops_at_the_tightest_tol():
+    """A flat punch pressed by 1e-12 of its height: the scene's ratio asks for tol 1e-16, which no solver reaches
+    (it raised ConvergenceError); the tightening stops at ``TIGHTEST_TOL`` and converges there."""
+    h = np.zeros((128, 128))
+    h[32:96, 32:96] = 0.25
+    out = contactlib.solve(h, length=1.0, E=1.0, nu=0.3, penetration=1e-12, periodic=False, target_error=1e-2)
+    assert out.attrs["tol"] == accuracy.TIGHTEST_TOL and out.attrs["converged"] == 1
+    assert float(out.contact_area) == pytest.approx(64 * 64 / 128**2)
