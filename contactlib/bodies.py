@@ -260,10 +260,11 @@ def _padded_layer(grid: Grid, *, material, layer: Layer, friction: float, direct
     padded = grid.padded()
     doubled = body_model(padded, material=material, layer=layer, friction=friction, direction=direction, tol=tol,
                          kernel="spectral", periodic=True)
-    # the doubled window's transfers, now on zero-padded fields (its multipliers hold the 1 / (2N)^d of the FFT pair)
+    # the doubled window's transfers, now on zero-padded fields (its multipliers hold the 1 / (2N)^d of the FFT pair);
+    # six thicknesses put its lowest wave at q h <= pi / 6, far from the half-space, so it is never reduced to it
     normal = doubled.compliance.transfer
-    if normal is None:  # reduced to the half-space there (not at six thicknesses and more): the layer's own kernel
-        normal = surface_green_tensor(padded, material.E0, float(material.nu), layer.thickness, layer.base).normal
+    if normal is None:
+        raise RuntimeError("layer: the doubled window's model lost the layer's kernel")  # not reached
     coupling = None if doubled.coupling is None else \
         Coupling(grid, periodic=False, friction=1.0, transfer=doubled.coupling.transfer)
     attrs = {**doubled.attrs, "layer_window_thicknesses": thicknesses,

@@ -293,7 +293,7 @@ class Compliance:
         self.grid, self.E_star, self.kernel, self.periodic = grid, float(E_star), kernel, bool(periodic)
         work_grid = grid if self.periodic else grid.padded()
         self.work_shape = work_grid.shape
-        self.transfer = self._transfer = transfer
+        self._transfer = transfer
         if transfer is None:
             self.multiplier = _unit_multiplier(grid, kernel, self.periodic) / self.E_star
         else:
@@ -313,6 +313,11 @@ class Compliance:
     """Whether the constrained CG preconditions with :attr:`inverse_multiplier`: not for a body more than
     :data:`PRECONDITION_SOFTENING` times softer than the half-space at some wavevector (a thin
     remote-pressure layer, a plate)."""
+
+    @property
+    def transfer(self) -> np.ndarray | None:
+        """The ``transfer`` given (a layer's spectral compliance on the work grid), None for the half-space's."""
+        return self._transfer
 
     @property
     def definite(self) -> bool:
@@ -441,7 +446,7 @@ class Stiffness(Compliance):
             raise ValueError("Stiffness: the compliance must be periodic (a zero-padded one has no exact inverse)")
         self.grid, self.E_star, self.kernel, self.periodic = compliance.grid, compliance.E_star, compliance.kernel, True
         self.work_shape, self._block = compliance.work_shape, compliance._block
-        self.transfer = self._transfer = None
+        self._transfer = None
         count = float(np.prod(self.work_shape))
         transfer = compliance.multiplier * count
         stiffness = np.zeros_like(transfer)
@@ -479,10 +484,11 @@ class Coupling:
         self.grid, self.periodic = grid, bool(periodic)
         self.work_shape = grid.shape if periodic else grid.padded().shape
         self._block = tuple(slice(0, n) for n in grid.shape)
-        # a spectral kernel on the work grid (non-periodic: a layer's, on the doubled window), else the odd real-space
-        # influence's (an imaginary spectrum)
-        self.transfer = np.asarray(transfer) if transfer is not None else fft.rfftn(influence)
-        self.multiplier = np.ascontiguousarray(friction * self.transfer / float(np.prod(self.work_shape)),
+        # a spectral kernel on the work grid (non-periodic: a layer's, on the doubled window), kept for a padded
+        # layer's model to reuse; else the odd real-space influence's (an imaginary spectrum), not kept
+        self.transfer = None if transfer is None else np.asarray(transfer)
+        spectrum = self.transfer if transfer is not None else fft.rfftn(influence)
+        self.multiplier = np.ascontiguousarray(friction * spectrum / float(np.prod(self.work_shape)),
                                                dtype="complex128")
 
     def __call__(self, pressure: np.ndarray) -> np.ndarray:
