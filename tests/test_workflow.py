@@ -24,6 +24,7 @@ def workdir(tmp_path_factory):
     work = tmp_path_factory.mktemp("wf")
     shutil.copy(ROOT / "Snakefile", work / "Snakefile")
     shutil.copytree(ROOT / "workflow", work / "workflow")
+    shutil.copytree(ROOT / "profiles", work / "profiles")
     shutil.copy(TINY, work / "tiny.yaml")
     return work
 
@@ -39,6 +40,8 @@ def test_lint_and_dry_runs(workdir):
     for extra in ([], ["--configfile", "tiny.yaml"], ["--config", "scale=paper"]):
         dry = snakemake(workdir, "-n", *extra)
         assert dry.returncode == 0, dry.stderr
+        # the default profile (rerun-incomplete after a hard kill) is where Snakemake looks for it
+        assert "Using workflow specific profile profiles/default" in dry.stderr
         assert "run_study" in dry.stdout and "plot_area_load" in dry.stdout
         assert "plot_speed_vs_error" in dry.stdout and "tabulate_speed_vs_error" in dry.stdout
         assert "plot_fig5_friction_area" in dry.stdout and "plot_fig6a_interlocking" in dry.stdout

@@ -11,7 +11,7 @@ from contactlib import lifeline, studies
 
 validate(config, schema="../schemas/config.schema.yaml")
 
-# Recovery after a hard kill, with no extra flags: the default profile (workflow/profiles/default) sets
+# Recovery after a hard kill, with no extra flags: the default profile (profiles/default, beside the Snakefile) sets
 # rerun-incomplete, and a lock left by a run that is gone is released here, before Snakemake locks.
 RUN_RECORD = Path(".snakemake/contactlib_run.pid")
 
