@@ -55,7 +55,8 @@ def main(argv=None) -> None:
     parser.add_argument("--json", type=Path)
     args = parser.parse_args(argv)
 
-    contactlib.solve(np.ones((8, 8)) - np.eye(8), E=E, nu=NU, mean_pressure=0.01)  # load the compiled sweeps
+    # load the compiled sweeps
+    contactlib.solve(np.ones((8, 8)) - np.eye(8), length=1.0, E=E, nu=NU, mean_pressure=0.01)
     rows = []
     for scene in SCENES:
         rows.append(run(scene.name, scene.surface(), scene.solve))

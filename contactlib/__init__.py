@@ -10,7 +10,7 @@ for fields of separate spherical asperities (the seed's two-scale method: per-as
 their interaction, then local FFT solves).
 """
 
-from . import accuracy, analysis, reference, surfaces, two_scale
+from . import accuracy, analysis, reference, resolution, surfaces, two_scale
 from ._version import __version__
 from .adhesion import Adhesion
 from .adhesion_curve import adhesion_curve
@@ -19,11 +19,12 @@ from .contact import ConvergenceError, solve, solve_tolerances
 from .grid import Grid
 from .materials import Elastic, Viscoelastic
 from .reciprocating import solve_reciprocating
+from .resolution import ResolutionWarning
 from .speed_path import predict_pressure, solve_speeds
 from .transient import TimeStepWarning, TransientInterrupted, solve_transient
 
 __all__ = ["solve", "Adhesion", "adhesion_curve", "solve_transient", "solve_reciprocating", "TransientInterrupted",
-           "TimeStepWarning",
+           "TimeStepWarning", "ResolutionWarning",
            "solve_speeds", "predict_pressure",
            "Layer", "Elastic", "Viscoelastic", "solve_tolerances", "ConvergenceError", "Grid", "surfaces", "analysis",
-           "reference", "accuracy", "two_scale", "__version__"]
+           "reference", "accuracy", "resolution", "two_scale", "__version__"]

@@ -21,11 +21,12 @@ zone ``pi K_I^2 / (8 sigma_0^2)`` with ``K_I^2 = 2 E* w`` at a rigid-elastic int
 from __future__ import annotations
 
 import math
-import numbers
 import warnings
 from dataclasses import dataclass
 
 import numpy as np
+
+from .inputs import number
 
 MODELS = ("maugis", "exponential", "jkr")
 
@@ -76,19 +77,14 @@ class Adhesion:
     model: str = "maugis"
 
     def __post_init__(self):
-        if self.model not in MODELS:
+        if not isinstance(self.model, str) or self.model not in MODELS:
             raise ValueError(f"model (adhesion law) must be one of {MODELS}, got {self.model!r}")
-        w = self.work
-        if isinstance(w, bool) or not isinstance(w, numbers.Real) or not math.isfinite(w) or w < 0:
-            raise ValueError(f"work (work of adhesion) must be a finite number >= 0, got {w!r}")
+        w = number("work (work of adhesion)", self.work, lower=0.0)
         if self.model != "jkr":
             if w == 0:  # a law without stress: its residual's scale sigma_0 + |P| vanished at zero load
                 raise ValueError(f"work (work of adhesion) must be > 0 for model={self.model!r}: without adhesion, "
                                  "leave adhesion= out")
-            r = self.range
-            if isinstance(r, bool) or not isinstance(r, numbers.Real) or not math.isfinite(r) or r <= 0:
-                raise ValueError(f"range (cohesive range) must be a finite number > 0 for model={self.model!r}, "
-                                 f"got {r!r}")
+            number(f"range (cohesive range, model={self.model!r})", self.range, lower=0.0, lower_open=True)
 
     @property
     def cohesive(self) -> bool:

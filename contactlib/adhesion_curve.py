@@ -13,11 +13,19 @@ branch ends the state jumps, and the jump is recorded:
   edge (:meth:`contactlib.solvers.energy.EnergyFamily.descend`): it grows where the approach exceeds the
   tensile Griffith root of ``G = w`` and shrinks below the previous one's, so it leaves a domain exactly
   where its local minimum of ``F_m(d)`` disappears, and never descends into smaller, interpenetrating
-  domains after a large step.
+  domains after a large step. Under load control the state carries the load asked exactly: the domain in
+  whose cell the equilibrium curve ``G = w`` carries it, at the approach that makes its load the one asked
+  (:meth:`contactlib.solvers.energy.EnergyFamily.load_state`); beyond the pull-off, NaN (``attrs['detached']``).
+  A state that would need a larger domain than the family holds (2D: the disc the window holds) is refused
+  with a ValueError naming the limit.
 
-Reported (Clarifications, "Adhesion"): ``pull_off_pressure``, the most tensile mean pressure along the
-path (under penetration control, the pull-off force of load control); ``pull_off_penetration``, the
-approach of the last state before the jump out of contact on unloading; ``jump_in_penetration``, the
+Reported (Clarifications, "Adhesion"): ``pull_off_pressure``, the pull-off of load control (cohesive laws: the
+most tensile mean pressure along the path; ``"jkr"``: the least load of the equilibrium curve ``G = w`` on its
+rising stretch, :meth:`~contactlib.solvers.energy.EnergyFamily.pull_off`, whatever the path's sampling);
+``pull_off_penetration``, the approach of the jump out of contact on unloading (cohesive: of the last state
+before it; ``"jkr"``: where the edge retreats past the curve's least approach under penetration control, the
+curve's approach at the pull-off under load control; NaN where the path does not leave contact);
+``jump_in_penetration``, the
 approach of the first closed state on loading; ``full_contact_penetration``; and
 ``hysteresis_energy``, the loop integral of the mean pressure over the approach (trapezoids, so jumps
 are resolved only to the step).
@@ -35,9 +43,11 @@ from . import adhesive_contact
 from ._version import __version__
 from .adhesion import Adhesion
 from .contact import _setup, periodic_of
-from .inputs import check_below_full_contact
+from .invariants import verify_path
+from .inputs import check_below_full_contact, real_values
 from .labels import attrs_for
 from .materials import material_of
+from .resolution import guard_path
 
 
 def adhesion_curve(
@@ -93,8 +103,8 @@ def adhesion_curve(
     if (penetrations is None) == (mean_pressures is None):
         raise ValueError("give exactly one of penetrations or mean_pressures")
     load_control = mean_pressures is not None
-    values = np.asarray(mean_pressures if load_control else penetrations, dtype=float).ravel()
     name = "mean_pressures" if load_control else "penetrations"
+    values = real_values(mean_pressures if load_control else penetrations, name).ravel()
     if values.size < 2 or not np.all(np.isfinite(values)) or np.any(np.diff(values) <= 0):
         raise ValueError(f"{name} must hold at least 2 finite, strictly increasing values")
     path = np.concatenate([values, values[::-1][1:]])
@@ -110,12 +120,17 @@ def adhesion_curve(
         check_below_full_contact(float(values.max()), setup.values, "penetrations",
                                  "stop below it, or give mean_pressures")
     start = time.perf_counter()
+    curve_scalars = {}
     if adhesion.model == "jkr":
-        rows = _energy_path(setup, adhesion, path, load_control)
+        rows, curve_scalars = _energy_path(setup, adhesion, path, load_control, unloading)
     else:
         rows = _cohesive_path(setup, adhesion, path, load_control)
     wall = time.perf_counter() - start
-    return _label(setup, adhesion, rows, unloading, load_control, wall, length_unit, pressure_unit)
+    ds = _label(setup, adhesion, rows, unloading, load_control, wall, length_unit, pressure_unit)
+    verify_path(ds, path, setup.values, adhesion, load_control=load_control, tol=setup.solver_args["tol"])
+    _curve_scalars(ds, curve_scalars, length_unit, pressure_unit)
+    guard_path(ds, setup)
+    return ds
 
 
 BISECTIONS = 3
@@ -199,16 +214,24 @@ def _failed_row(value, load_control, residual=math.nan):
     return row
 
 
-def _energy_path(setup, adhesion, path, load_control):
+def _energy_path(setup, adhesion, path, load_control, unloading):
+    """The energy method's states along ``path``, and the path's scalars that its equilibrium curve fixes
+    whatever the sampling (:func:`_curve_scalars`)."""
     fam = adhesive_contact.family(setup)
     w = adhesion.work
     rows, m = [], -1
-    _, d_eq, P_eq = fam.equilibrium_curve(w)
     largest = fam.a.size  # the index of the closed window (one past the largest partial domain)
     fam_definite = setup.operator.definite
-    for value in path:
+    pull_off, _ = fam.pull_off(w)
+    turned = -1  # the domain unloading starts from
+    for value, back in zip(path, unloading):
+        if back and turned < 0 <= m:
+            turned = min(m, largest - 1)
         if load_control:
-            m_new, d = _load_step(P_eq, d_eq, m, float(value))
+            found = fam.load_state(float(value), w, near=m)
+            if found is None and fam.limit is not None and not value < pull_off:
+                raise fam.refusal("mean_pressures", float(value))
+            m_new, d = found if found is not None else (None, None)
             # no stable partial contact carries a compressive load: the contact jumps to full (a thin
             # remote-pressure layer has no stable partial contact at all)
             full = m_new is None and (value > 0 or (m == largest and value >= 0))
@@ -219,14 +242,17 @@ def _energy_path(setup, adhesion, path, load_control):
                              "jump": int(m != largest), "residual": 0.0})  # exact: the flat punch
                 m = largest
                 continue
-            if m_new is None:
+            if m_new is None:  # beyond the pull-off: no equilibrium under load control
                 rows.append(_failed_row(value, True))
                 m = -1
                 continue
         else:
             d = float(value)
             m_new = fam.descend(m if m < largest else largest - 1, d, w)
-        state = adhesive_contact.energy_state(setup, fam, m_new, d, "")
+            if fam.beyond(m_new):
+                raise fam.refusal("penetrations", d)
+        state = adhesive_contact.energy_state(setup, fam, m_new, d, "", mean_pressure=float(value) if load_control
+                                              else None)
         setup.check_window(state.pressure)
         area = float(np.count_nonzero(state.in_contact)) / state.in_contact.size
         before = 0.0 if m < 0 else 1.0 if m >= fam.ends.size else float(fam.ends[m]) / fam.size
@@ -235,18 +261,33 @@ def _energy_path(setup, adhesion, path, load_control):
                      "interaction_area": area, "converged": int(state.converged), "jump": int(bool(rows) and jump),
                      "residual": state.residual})
         m = m_new
-    return rows
+    # the jump out of contact on unloading, where the path makes it: a closed state, then an open or detached one
+    left = any(b and a > 0 and not c > 0 for (a, b, c) in zip([r["contact_area"] for r in rows],
+                                                             unloading[1:], [r["contact_area"] for r in rows[1:]]))
+    jump_out = math.nan
+    if left and load_control:
+        jump_out = fam.pull_off_penetration(w)
+    elif left:
+        jump_out = fam.detachment_penetration(w, start=turned if turned >= 0 else None)
+    return rows, {"pull_off_pressure": pull_off, "pull_off_penetration": jump_out}
 
 
-def _load_step(P_eq, d_eq, m, load):
-    """The stable equilibrium domain (``dP/dm > 0``) carrying ``load`` nearest to domain ``m``."""
-    ok = np.isfinite(P_eq[:-1]) & np.isfinite(P_eq[1:]) & (np.diff(P_eq) > 0)
-    brackets = np.flatnonzero(ok & (np.minimum(P_eq[:-1], P_eq[1:]) <= load) & (np.maximum(P_eq[:-1], P_eq[1:])
-                                                                               >= load))
-    if brackets.size == 0:
-        return None, None
-    k = int(brackets[np.argmin(np.abs(brackets - max(m, 0)))])
-    return k, float(d_eq[k])
+def _curve_scalars(ds: xr.Dataset, scalars: dict, length_unit: str, pressure_unit: str) -> None:
+    """Put the scalars an equilibrium curve fixes in place of those read off the sampled states (in place): the
+    energy method's pull-off, the least load of its equilibrium curve ``G = w`` (the sawtooth of its states, whose
+    domain grows by whole elements, reaches below it by a step-dependent amount), and the penetration at which
+    the path leaves contact (:meth:`contactlib.solvers.energy.EnergyFamily.detachment_penetration`; under load
+    control, the curve's at the pull-off, :meth:`~contactlib.solvers.energy.EnergyFamily.pull_off_penetration`).
+    Not where a failed step withheld the scalars."""
+    if not scalars or ds.attrs.get("converged") != 1:
+        return
+    for name, value in scalars.items():
+        ds[name] = ((), float(value), attrs_for(name, length=length_unit, pressure=pressure_unit))
+    ds.attrs["pull_off_definition"] = (
+        "pull_off_pressure: the least mean pressure of the equilibrium curve G = w (its points between consecutive "
+        "domains, second order in the spacing), whatever the path's sampling; pull_off_penetration: where the path "
+        "leaves contact (penetration control: the edge retreating past the curve's least approach; load control: "
+        "the curve's approach at the pull-off), NaN where the path does not")
 
 
 def _label(setup, adhesion, rows, unloading, load_control, wall, length_unit, pressure_unit) -> xr.Dataset:

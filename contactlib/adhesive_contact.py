@@ -3,21 +3,22 @@
 Kept apart from :mod:`contactlib.contact`, which calls :func:`check`, :func:`run` and :func:`label` and
 nothing else. The cohesive laws go to :func:`contactlib.solvers.cohesive.solve_cohesive` with the
 scene's compliance (half-space or layer, periodic or zero-padded); ``"jkr"`` to the energy method of
-:mod:`contactlib.solvers.energy` on the compliance matrix of the profile.
+:mod:`contactlib.solvers.energy` on the compliance matrix of the profile or sphere (reduced to the orbits of
+its symmetries), which :func:`family` builds to the largest domain the window holds.
 """
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 
 import numpy as np
 import xarray as xr
 
 from .adhesion import Adhesion, scene_attrs
+from .inputs import number
 from .labels import attrs_for
 from .solvers.cohesive import MAX_NEWTON, solve_cohesive
-from .solvers.energy import MAX_POINTS, EnergyFamily, check_symmetric, energy_family, growth_order
+from .solvers.energy import EnergyFamily, check_symmetric, energy_family, growth_order
 from .solvers.state import ContactState, height_scale
 
 
@@ -44,8 +45,8 @@ def check(adhesion, values: np.ndarray, *, spacing, mean_pressure, penetration, 
     if (mean_pressure is None) == (penetration is None):
         raise ValueError("give exactly one of mean_pressure or penetration")
     for name, v in (("mean_pressure", mean_pressure), ("penetration", penetration)):
-        if v is not None and not math.isfinite(v):
-            raise ValueError(f"{name} must be finite, got {v!r}")
+        if v is not None:
+            number(name, v)  # a finite number of either sign (tension, an approach below first contact)
     if friction:
         raise ValueError("friction: adhesion is modelled frictionless (friction=0)")
     if mean_pressure is not None and adhesion.cohesive and mean_pressure < -adhesion.peak_stress:
@@ -78,23 +79,27 @@ def run(setup, adhesion: Adhesion, *, warm_penetration=None) -> AdhesiveState:
 
 
 def family(setup, max_radius: float | None = None) -> EnergyFamily:
-    """The energy method's family of contact domains of the scene (``max_radius`` [length] bounds the
-    largest 2D disc; its elements, at most :data:`MAX_POINTS`, make a dense matrix)."""
+    """The energy method's family of contact domains of the scene, to the largest the window holds (2D: the disc
+    of radius ``min(shape) // 2 - 1`` spacings about the apex; ``max_radius`` [length] bounds it) or to
+    :data:`contactlib.solvers.energy.MAX_UNKNOWNS` (its :attr:`~contactlib.solvers.energy.EnergyFamily.limit`)."""
     order, ends = growth_order(setup.values, setup.grid.spacing, periodic=setup.operator.periodic,
                                max_radius=max_radius)
-    if order.size > MAX_POINTS:
-        keep = int(np.searchsorted(ends, MAX_POINTS, side="right"))
-        if keep < 2:
-            raise ValueError(f"adhesion model 'jkr': the energy method takes at most {MAX_POINTS} elements "
-                             f"in its largest domain")
-        ends = ends[:keep]
-        order = order[: ends[-1]]
-    matrix = setup.operator.matrix(order)
-    return energy_family(matrix, setup.values, setup.grid.element_area, order, ends)
+    limit = None
+    if setup.values.ndim == 2 or max_radius is not None:
+        spacing = max(setup.grid.spacing)
+        limit = (f"the largest disc about the apex the family was given (radius {len(ends) - 0.5:g} spacings, "
+                 f"max_radius {max_radius!r})" if max_radius is not None else
+                 f"the largest disc about the apex that the window holds (radius {len(ends) - 0.5:g} spacings = "
+                 f"{(len(ends) - 0.5) * spacing:.4g}): a larger window (length, the same spacing) holds a larger "
+                 "contact")
+    return energy_family(setup.operator.response(), setup.values, setup.grid.spacing, setup.grid.element_area,
+                         order, ends, periodic=setup.operator.periodic, limit=limit)
 
 
-def energy_state(setup, fam: EnergyFamily, m: int, penetration: float, note: str) -> AdhesiveState:
-    """The state of domain ``m`` (``-1``: out of contact) at approach ``penetration``."""
+def energy_state(setup, fam: EnergyFamily, m: int, penetration: float, note: str,
+                 mean_pressure: float | None = None) -> AdhesiveState:
+    """The state of domain ``m`` (``-1``: out of contact) at approach ``penetration``; ``mean_pressure``: the load
+    it was asked to carry (its miss joins the residual)."""
     values = setup.values
     h0 = values.max() - values
     if m < 0:
@@ -110,6 +115,9 @@ def energy_state(setup, fam: EnergyFamily, m: int, penetration: float, note: str
     open_gap = np.where(closed, 0.0, gap)
     # the equilibrium holds by construction; what can fail is the gap outside the domain (interpenetration)
     residual = float(np.max(np.maximum(-open_gap, 0.0))) / height_scale(values)
+    if mean_pressure is not None:  # exact up to round-off (the penetration is solved for it)
+        residual = max(residual, abs(float(p.mean()) - mean_pressure) / max(abs(mean_pressure),
+                                                                             float(np.abs(p).mean()), 1e-300))
     return AdhesiveState(pressure=p, gap=np.where(closed, 0.0, gap), displacement=displacement,
                          penetration=float(penetration), mean_pressure=float(p.mean()), iterations=0,
                          residual=residual, converged=residual <= setup.solver_args["tol"],
@@ -122,24 +130,31 @@ def _run_energy(setup, adhesion: Adhesion, mean_pressure, penetration) -> Adhesi
     w = adhesion.work
     if penetration is not None:
         minima = fam.stable_domains(penetration, w)
+        if fam.beyond(int(minima[-1])):  # the largest domain is stable: a larger one may be too, and lower
+            raise fam.refusal("penetration", penetration)
         F = np.concatenate([[0.0], fam.free_energy(penetration, w)])
         m = int(minima[np.argmin(F[minima + 1])])
         note = (f"least free energy among the stable domains at this approach ({minima.size} stable "
                 f"states: adhesion_curve follows a path)")
         return energy_state(setup, fam, m, penetration, note)
-    _, d, P = fam.equilibrium_curve(w)
-    # under load control a state is stable where the load grows with the contact
-    stable = np.isfinite(P[:-1]) & np.isfinite(P[1:]) & (np.diff(P) > 0)
-    candidates = np.flatnonzero(stable & (np.minimum(P[:-1], P[1:]) <= mean_pressure)
-                                & (np.maximum(P[:-1], P[1:]) >= mean_pressure))
-    if candidates.size == 0:
-        raise ValueError(f"mean_pressure {mean_pressure!r}: no stable adhesive contact carries it (pull-off "
-                         f"pressure {np.nanmin(P):.6g}, or beyond the largest domain)")
-    k = int(candidates[-1])  # the branch of largest contact
-    frac = (mean_pressure - P[k]) / (P[k + 1] - P[k])
-    mk = k if frac < 0.5 else k + 1
-    note = "stable load-control branch of largest contact (Griffith balance G = w at the edges)"
-    return energy_state(setup, fam, mk, float(d[mk]) if np.isfinite(d[mk]) else float(d[k]), note)
+    found = fam.load_state(mean_pressure, w)
+    if found is None:
+        pull_off, _ = fam.pull_off(w)
+        if np.isnan(pull_off):
+            raise ValueError(f"mean_pressure {mean_pressure!r}: no partial contact is stable under load control here "
+                             "(the equilibrium curve G = w nowhere rises with the contact)")
+        if mean_pressure < pull_off:
+            raise ValueError(f"mean_pressure {mean_pressure!r}: no adhesive equilibrium carries it under load "
+                             f"control: beyond the pull-off {pull_off:.6g} (the least load of the equilibrium "
+                             "curve G = w; contactlib.adhesion_curve reports it as pull_off_pressure)")
+        if fam.limit is not None:
+            raise fam.refusal("mean_pressure", mean_pressure)
+        raise ValueError(f"mean_pressure {mean_pressure!r}: no stable partial contact carries it (beyond the "
+                         "largest interval, the closed window; contactlib.adhesion_curve follows it there)")
+    m, d = found
+    note = ("load control: the domain in whose cell the equilibrium curve G = w carries this load, at the "
+            "penetration that carries it exactly (stable under load control: the curve rises there)")
+    return energy_state(setup, fam, m, d, note, mean_pressure=mean_pressure)
 
 
 def label(ds: xr.Dataset, state: AdhesiveState, adhesion: Adhesion, setup, *, length_unit: str,

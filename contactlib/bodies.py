@@ -41,7 +41,6 @@ import contextlib
 import contextvars
 import dataclasses
 import math
-import numbers
 from dataclasses import dataclass
 from functools import partial
 
@@ -49,6 +48,7 @@ import numpy as np
 
 from . import fft
 from .grid import Grid
+from .inputs import number
 from .kernels.layer import BASES, zero_mode_compliance
 from .kernels.elastic import halfspace_love_multiplier
 from .kernels.tensor import SurfaceGreenTensor, halfspace_coupling_influence, surface_green_tensor
@@ -93,9 +93,7 @@ class Layer:
     base: str = "confined"
 
     def __post_init__(self):
-        t = self.thickness
-        if isinstance(t, bool) or not isinstance(t, numbers.Real) or not math.isfinite(t) or t <= 0:
-            raise ValueError(f"thickness (layer thickness) must be a finite number > 0, got {t!r}")
+        number("thickness (layer thickness)", self.thickness, lower=0.0, lower_open=True)
         if self.base not in BASES:
             raise ValueError(f"base must be one of {BASES}, got {self.base!r}")
 

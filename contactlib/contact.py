@@ -9,7 +9,7 @@ import time
 import numpy as np
 import xarray as xr
 
-from . import accuracy, adhesive_contact, fft
+from . import accuracy, adhesive_contact, fft, resolution
 from .analysis.friction import interlocking_friction
 from ._version import __version__
 from .labels import attrs_for, to_dataset
@@ -120,7 +120,9 @@ def solve(
         Polonsky-Keer constrained conjugate gradients, or the seed paper's active-set +
         Gauss-Seidel scheme (small grids; a cross-check).
     length : float or tuple, optional
-        Window size [length] for ndarray heights (default 1).
+        Window size [length], one number or one per axis: required for bare-array heights (there is no
+        default window; ``ValueError`` naming ``length`` without it); for a DataArray it may only repeat the
+        window its coordinates give.
     initial_pressure : ndarray, optional
         Warm start for ``method="cg"``.
     length_unit, pressure_unit : str
@@ -195,6 +197,7 @@ def solve(
     wall = time.perf_counter() - start
     ds = setup.label(state, wall, length_unit=length_unit, pressure_unit=pressure_unit)
     setup.check(state, ds)
+    resolution.guard_setup(setup, state, ds, where="solve", guarantee=target_error is not None)
     return ds
 
 
@@ -238,7 +241,7 @@ def solve_tolerances(
         When a tolerance is not reached (``max_iter`` or a stall): ``err.datasets`` holds the whole
         list, the unreached tolerances carrying the final state with ``attrs['converged'] = 0``.
     """
-    tols = [float(t) for t in np.atleast_1d(np.asarray(tols, dtype=float))]
+    tols = [float(t) for t in np.atleast_1d(real_values(tols, "tols"))]
     if not tols:
         raise ValueError("tols must hold at least one tolerance")
     for t in tols:
@@ -277,6 +280,7 @@ def solve_tolerances(
             setup.check(state, ds)
         except ConvergenceError as err:
             failed = failed or err
+        resolution.guard_setup(setup, state, ds, where="solve_tolerances", quiet=bool(out))  # one warning a call
         out.append(ds)
     if failed is not None:
         failed.datasets = out
@@ -361,8 +365,9 @@ class _Setup(NonSymmetricSolve):
                 name = f"tangential_displacement_{axis}"
                 variables[name] = xr.Variable(self.dims, fft.irfftn(spectrum, self.grid.shape),
                                               attrs_for(name, length=length_unit, pressure=pressure_unit))
-        mu_a = interlocking_friction(state.pressure, self.values, lengths=self.grid.lengths, direction=direction,
-                                     periodic=self.operator.periodic)
+        # from the deformed surface: exactly zero on a decoupled elastic body, the dissipated power when sliding
+        mu_a = interlocking_friction(state.pressure, state.displacement, lengths=self.grid.lengths,
+                                     direction=direction, periodic=self.operator.periodic)
         variables["friction_coefficient_interlocking"] = xr.Variable((), mu_a,
                                                                      attrs_for("friction_coefficient_interlocking"))
         variables["friction_coefficient"] = xr.Variable((), mu + mu_a, attrs_for("friction_coefficient"))
@@ -395,7 +400,9 @@ class _Setup(NonSymmetricSolve):
 
     def check(self, state: ContactState, ds: xr.Dataset) -> None:
         """Refuse a footprint cut by the window edge; raise :class:`ConvergenceError` if unconverged (first,
-        for an adhesive solve: a diverged cohesive iterate can touch the edge, which would hide why)."""
+        for an adhesive solve: a diverged cohesive iterate can touch the edge, which would hide why), and
+        :class:`contactlib.invariants.InvariantError` where a converged state breaks an invariant
+        (:func:`contactlib.invariants.verify_solve`; ``ds.attrs['invariants_checked']`` names them)."""
         if state.converged or self.adhesion is None:
             self.check_window(state.pressure)
         if not state.converged:
@@ -413,6 +420,8 @@ class _Setup(NonSymmetricSolve):
                           if self.adhesion is not None and (self.solver_args["mean_pressure"] or 0.0) < 0 else ""))
             ds.attrs["convergence_message"] = message  # the partial state says why it is partial
             raise ConvergenceError(message, residual=state.residual, dataset=ds)
+        from .invariants import verify_solve  # imported here: invariants subclasses this module's ConvergenceError
+        verify_solve(self, state, ds)
 
 
 def constrained_solve(operator, heights, *, monitor=None, verify_below=None, restart_fraction=None,

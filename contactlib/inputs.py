@@ -10,22 +10,118 @@ import numbers
 import numpy as np
 import xarray as xr
 
-from .bodies import Layer
 from .grid import Grid
-from .materials import Viscoelastic
+
+# The one validation path: every entry point (solve, solve_tolerances, solve_transient, solve_reciprocating,
+# adhesion_curve, two_scale.solve, the surfaces, the materials, Layer, Adhesion) checks its numbers, whole numbers,
+# arrays and times through the functions below, so a wrong type or shape is refused naming the parameter.
+# (materials and bodies import these: this module imports them only inside the functions that need them.)
+
+
+def _kind(value) -> str:
+    """The type of a refused value, for a message (``None`` as itself)."""
+    return "None" if value is None else type(value).__name__
+
+
+def _short(value, limit: int = 60) -> str:
+    text = repr(value)
+    return text if len(text) <= limit else text[: limit - 3] + "..."
+
+
+def _described(value) -> str:
+    """A refused value with its type, for a message: ``str '1e7'``, ``None``."""
+    return "None" if value is None else f"{_kind(value)} {_short(value)}"
+
+
+def _bounds(lower, upper, lower_open: bool, upper_open: bool) -> str:
+    """`` > 0``, `` in (0, 1]``, ...: the range of :func:`number` in words ("" without bounds)."""
+    if lower is not None and upper is not None:
+        return f" in {'(' if lower_open else '['}{lower:g}, {upper:g}{')' if upper_open else ']'}"
+    if lower is not None:
+        return f" {'>' if lower_open else '>='} {lower:g}"
+    if upper is not None:
+        return f" {'<' if upper_open else '<='} {upper:g}"
+    return ""
+
+
+def number(name: str, value, *, lower: float | None = None, upper: float | None = None, lower_open: bool = False,
+           upper_open: bool = False, finite: bool = True) -> float:
+    """``value`` as a float: a real number (a Python or numpy scalar, or a 0-d array) within the bounds.
+
+    Raises ``ValueError`` naming ``name``: a wrong type (a string, a bool, None, a complex number, a sequence: the
+    type is named, as ``E must be a number > 0, got str '1e7'``), a NaN or infinity (unless ``finite=False``), or a
+    value outside ``[lower, upper]`` (open ends where ``lower_open`` / ``upper_open``).
+    """
+    raw = value[()] if isinstance(value, np.ndarray) and value.ndim == 0 else value
+    if isinstance(raw, (bool, np.bool_)) or not isinstance(raw, numbers.Real):
+        raise ValueError(f"{name} must be a number{_bounds(lower, upper, lower_open, upper_open)}, got "
+                         f"{_described(value)}")
+    x = float(raw)
+    if math.isnan(x) and not finite:
+        return x
+    outside = ((finite and not math.isfinite(x)) or math.isnan(x)
+               or (lower is not None and (x < lower or (lower_open and x == lower)))
+               or (upper is not None and (x > upper or (upper_open and x == upper))))
+    if outside:
+        what = "a finite number" if finite else "a number"
+        raise ValueError(f"{name} must be {what}{_bounds(lower, upper, lower_open, upper_open)}, got {value!r}")
+    return x
 
 
 def real_values(values, name: str) -> np.ndarray:
-    """``values`` as a float array, refusing complex ones by ``name`` (numpy would drop the imaginary part with a
+    """``values`` as a float array, refused by ``name`` when they are not an array of real numbers: a string, None,
+    a ragged nested list, non-numeric entries, or complex values (numpy would drop the imaginary part with a
     warning: a field's FFT passed for the field itself)."""
-    raw = values if isinstance(values, np.ndarray) else np.asarray(values)
+    if values is None or isinstance(values, (str, bytes)):
+        raise ValueError(f"{name} must be an array of numbers, got {_described(values)}")
+    try:
+        raw = values if isinstance(values, np.ndarray) else np.asarray(values)
+    except (ValueError, TypeError):  # numpy: "inhomogeneous shape"
+        raise ValueError(f"{name} must be a rectangular array of numbers: its rows differ in length (a ragged "
+                         "nested list)") from None
     if np.iscomplexobj(raw):
         raise ValueError(f"{name} must be real, got complex values (dtype {raw.dtype})")
+    if raw.dtype.kind not in "biuf":
+        try:  # an object array of numbers converts; strings, dates and others do not
+            converted = np.asarray(raw, dtype=float) if raw.dtype.kind == "O" else None
+        except (ValueError, TypeError):
+            converted = None
+        if converted is None:
+            raise ValueError(f"{name} must be an array of numbers, got dtype {raw.dtype} ({_short(values)})")
+        return converted
     return np.asarray(raw, dtype=float)
 
 
+def time_values(values, name: str = "times") -> np.ndarray:
+    """Instants [time] as a finite, strictly increasing 1D float array, refused by ``name``: a string or a single
+    number (give a sequence: ``[t]``), a wrong shape, NaN, or a step that does not increase."""
+    times = real_values(values, name)
+    if times.ndim == 0:
+        raise ValueError(f"{name} must be a 1D sequence of times [time], got the single number {float(times):g}: give "
+                         f"[{float(times):g}]")
+    if times.ndim != 1 or times.size < 1:
+        raise ValueError(f"{name} must be a 1D sequence of at least one time, got shape {times.shape}")
+    if not np.all(np.isfinite(times)):
+        raise ValueError(f"{name} must be finite")
+    if np.any(np.diff(times) <= 0):
+        k = int(np.argmax(np.diff(times) <= 0))
+        raise ValueError(f"{name} must increase strictly (every dt > 0): {name}[{k + 1}] = {float(times[k + 1])!r} "
+                         f"after {name}[{k}] = {float(times[k])!r}")
+    return times
+
+
 def grid_of(heights, length=None) -> tuple[np.ndarray, Grid, tuple[str, ...], dict]:
-    """Heights array, grid, dim names and coords of a DataArray or ndarray input."""
+    """Heights array, grid, dim names and coords of a DataArray or ndarray input: the one way every entry point
+    reads heights.
+
+    A DataArray (as :mod:`contactlib.surfaces` makes them) carries its window: coordinate step times points
+    (``length`` may repeat it). A bare array (ndarray, nested list) has no window, so ``length`` [length] is
+    required: there is no default window (a 1 m one made micrometre heights come back in full contact).
+
+    Raises ``ValueError`` naming ``heights`` (not an array of real numbers, ragged, complex, not 1D or 2D, fewer
+    than 2 points, NaN) or ``length`` (missing for a bare array, not a positive number per axis, contradicting the
+    coordinates).
+    """
     if isinstance(heights, xr.DataArray):
         values = real_values(heights.values, "heights")
         dims = tuple(heights.dims)
@@ -45,8 +141,12 @@ def grid_of(heights, length=None) -> tuple[np.ndarray, Grid, tuple[str, ...], di
         values = real_values(heights, "heights")
         if values.ndim not in (1, 2):
             raise ValueError(f"heights must be 1D or 2D, got {values.ndim} dimensions")
+        if length is None:
+            raise ValueError(f"length: heights given as a bare array ({_kind(heights)} of shape {values.shape}) carry "
+                             "no window size: pass length= (the window [length], one number or one per axis), or "
+                             "give a DataArray from contactlib.surfaces, whose coordinates carry it")
         dims = ("x", "y")[: values.ndim]
-        lengths = lengths_of(1.0 if length is None else length, values.ndim)
+        lengths = lengths_of(length, values.ndim)
         coords = {}
     if values.ndim not in (1, 2):
         raise ValueError(f"heights must be 1D or 2D, got {values.ndim} dimensions")
@@ -87,6 +187,8 @@ def periodic_of(heights, periodic: bool | None) -> bool:
     """``periodic`` if given, else what a DataArray's ``attrs['periodic']`` says (a measured surface from
     :func:`contactlib.surfaces.read` is non-periodic unless its file or reader said so), else True."""
     if periodic is not None:
+        if not isinstance(periodic, (bool, np.bool_, numbers.Real)) or periodic not in (0, 1):  # "no" was True
+            raise ValueError(f"periodic must be True, False or None (from the heights), got {_described(periodic)}")
         return bool(periodic)
     if isinstance(heights, xr.DataArray) and "periodic" in heights.attrs:
         return bool(heights.attrs["periodic"])
@@ -94,6 +196,10 @@ def periodic_of(heights, periodic: bool | None) -> bool:
 
 
 def lengths_of(length, ndim: int) -> tuple[float, ...]:
+    """The window [length] along each of ``ndim`` axes: one number, or one per axis, each finite and > 0."""
+    if isinstance(length, (str, bytes, bool, np.bool_)) or length is None:
+        raise ValueError(f"length must be a number or one per axis ({ndim}), finite and > 0, got "
+                         f"{_described(length)}")
     try:
         lengths = tuple(float(v) for v in np.broadcast_to(np.asarray(length, dtype=float), (ndim,)))
     except (TypeError, ValueError):
@@ -119,16 +225,19 @@ def check_below_full_contact(penetration: float, heights: np.ndarray, name: str 
 def check_tolerance(value, name: str) -> None:
     """A relative tolerance: a number in (0, 1) (at 1 or more the initial guess already meets it)."""
     if isinstance(value, bool) or not (isinstance(value, numbers.Real) and math.isfinite(value) and 0 < value < 1):
-        raise ValueError(f"{name} must be a number in (0, 1), got {value!r}")
+        shown = repr(value) if isinstance(value, numbers.Real) and not isinstance(value, bool) else _described(value)
+        raise ValueError(f"{name} must be a number in (0, 1), got {shown}")
 
 
 def check_whole(value, name: str, minimum: int = 1) -> int:
     """``value`` as an int: a whole number >= ``minimum`` (a float such as 64.0 passes; 2.5, NaN, infinity, a bool or a
-    string are refused with a ValueError naming ``name``)."""
-    if isinstance(value, bool) or not isinstance(value, numbers.Real) or not math.isfinite(value) \
-            or int(value) != value or value < minimum:
+    string are refused with a ValueError naming ``name``, and the type where it is not a number)."""
+    raw = value[()] if isinstance(value, np.ndarray) and value.ndim == 0 else value
+    if isinstance(raw, (bool, np.bool_)) or not isinstance(raw, numbers.Real):
+        raise ValueError(f"{name} must be a whole number >= {minimum}, got {_described(value)}")
+    if not math.isfinite(raw) or int(raw) != raw or raw < minimum:
         raise ValueError(f"{name} must be a whole number >= {minimum}, got {value!r}")
-    return int(value)
+    return int(raw)
 
 
 def check_iterations(value, name: str = "max_iter") -> None:
@@ -139,18 +248,16 @@ def check_iterations(value, name: str = "max_iter") -> None:
 def check_loads(mean_pressure, penetration) -> None:
     if (mean_pressure is None) == (penetration is None):
         raise ValueError("give exactly one of mean_pressure or penetration")
-    for name, value in (("mean_pressure", mean_pressure), ("penetration", penetration)):
-        if value is not None and (isinstance(value, bool) or np.ndim(value) != 0 or not np.isrealobj(value)
-                                  or not isinstance(np.asarray(value).item(), numbers.Real)):
-            raise ValueError(f"{name} must be a number, got {value!r}")
-    if mean_pressure is not None and (not math.isfinite(mean_pressure) or mean_pressure < 0):
-        raise ValueError(f"mean_pressure must be finite and >= 0, got {mean_pressure!r}")
-    if penetration is not None and not math.isfinite(penetration):
-        raise ValueError(f"penetration must be finite, got {penetration!r}")
+    if mean_pressure is not None:
+        number("mean_pressure", mean_pressure, lower=0.0)
+    if penetration is not None:
+        number("penetration", penetration)
 
 
 def check_friction(layer, friction, sliding_direction, nu, method, kernel, periodic) -> None:
     """The scene's body and interface: refused with the parameter named, before anything is built."""
+    from .bodies import Layer
+
     sliding_direction = 0.0 if sliding_direction is None else sliding_direction
     if layer is not None:
         if not isinstance(layer, Layer):
@@ -160,12 +267,8 @@ def check_friction(layer, friction, sliding_direction, nu, method, kernel, perio
         if not periodic and layer.base != "confined":
             raise ValueError(f"layer: a {layer.base!r} layer bends over the whole window (a plate), which a "
                              "non-periodic window cuts off: it is modelled on a periodic window only (periodic=True)")
-    if isinstance(friction, bool) or not isinstance(friction, numbers.Real) or not math.isfinite(friction) \
-            or friction < 0:
-        raise ValueError(f"friction (Coulomb coefficient) must be a finite number >= 0, got {friction!r}")
-    if isinstance(sliding_direction, bool) or not isinstance(sliding_direction, numbers.Real) \
-            or not math.isfinite(sliding_direction):
-        raise ValueError(f"sliding_direction must be a finite angle [rad], got {sliding_direction!r}")
+    number("friction (Coulomb coefficient)", friction, lower=0.0)
+    number("sliding_direction (angle [rad])", sliding_direction)
     if method == "active-set" and (layer is not None or friction > 0):
         raise ValueError("method='active-set' solves frictionless half-space contact only: use method='cg' "
                          "with a layer or friction")
@@ -179,7 +282,7 @@ def check_velocity(sliding_velocity, sliding_direction, dim, material, method, p
     direction it sets; contradictions and unsupported scenes refused with the parameter named."""
     if sliding_velocity is None:
         return None, 0.0 if sliding_direction is None else sliding_direction
-    velocity = np.atleast_1d(np.asarray(sliding_velocity, dtype=float))
+    velocity = np.atleast_1d(real_values(sliding_velocity, "sliding_velocity"))
     if velocity.shape != (dim,):
         raise ValueError(f"sliding_velocity must have {dim} component(s) (one per axis of the heights), "
                          f"got {sliding_velocity!r}")
@@ -192,6 +295,8 @@ def check_velocity(sliding_velocity, sliding_direction, dim, material, method, p
     elif sliding_direction is not None and not np.isclose(np.cos(sliding_direction - direction), 1.0, atol=1e-12):
         raise ValueError(f"sliding_direction {sliding_direction!r} contradicts sliding_velocity {sliding_velocity!r} "
                          f"(direction {direction:.6g} rad): give one of them")
+    from .materials import Viscoelastic
+
     if isinstance(material, Viscoelastic) and speed > 0:
         if method == "active-set":
             raise ValueError("method='active-set' solves symmetric (elastic) problems only; a viscoelastic body in "

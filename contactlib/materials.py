@@ -13,11 +13,12 @@ modulus 1 times the material's compliance (:mod:`contactlib.kernels.viscoelastic
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, field
 
 import numpy as np
 from scipy.optimize import brentq
+
+from .inputs import number
 
 
 def contact_modulus(E: float, nu: float) -> float:
@@ -30,18 +31,12 @@ def contact_modulus(E: float, nu: float) -> float:
     return float(E) / (1.0 - float(nu) ** 2)
 
 
-def _is_number(value) -> bool:
-    return isinstance(value, (int, float, np.floating, np.integer)) and not isinstance(value, bool)
-
-
 def _check_positive(value, name: str) -> None:
-    if not _is_number(value) or not math.isfinite(value) or value <= 0:
-        raise ValueError(f"{name} must be a finite number > 0, got {value!r}")
+    number(name, value, lower=0.0, lower_open=True)
 
 
 def _check_poisson(nu) -> None:
-    if not _is_number(nu) or not math.isfinite(nu) or not (-1.0 < nu <= 0.5):
-        raise ValueError(f"nu (Poisson ratio) must lie in (-1, 0.5], got {nu!r}")
+    number("nu (Poisson ratio)", nu, lower=-1.0, upper=0.5, lower_open=True)
 
 
 @dataclass(frozen=True)
@@ -115,17 +110,19 @@ class Viscoelastic:
         _check_positive(self.E0, "E0 (relaxed modulus)")
         _check_poisson(self.nu)
         try:
-            branches = tuple((float(E), float(tau)) for E, tau in self.prony)
-        except (TypeError, ValueError):
+            pairs = [tuple(branch) for branch in self.prony]
+        except TypeError:
             raise ValueError(f"prony must be a sequence of (E_i, tau_i) pairs, got {self.prony!r}") from None
-        if not branches:
+        if not pairs:
             raise ValueError("prony: the Prony series is empty; give at least one (E_i, tau_i) branch "
                              "(or use contactlib.Elastic)")
-        for i, (E, tau) in enumerate(branches):
-            if not (math.isfinite(E) and E > 0):
-                raise ValueError(f"prony[{i}]: E_i must be a finite number > 0, got {E!r}")
-            if not (math.isfinite(tau) and tau > 0):
-                raise ValueError(f"prony[{i}]: tau_i (relaxation time) must be a finite number > 0, got {tau!r}")
+        branches = []
+        for i, pair in enumerate(pairs):
+            if len(pair) != 2:
+                raise ValueError(f"prony[{i}] must be a pair (E_i, tau_i), got {pair!r}")
+            branches.append((number(f"prony[{i}]: E_i", pair[0], lower=0.0, lower_open=True),
+                             number(f"prony[{i}]: tau_i (relaxation time)", pair[1], lower=0.0, lower_open=True)))
+        branches = tuple(branches)
         object.__setattr__(self, "prony", branches)
 
     @classmethod

@@ -7,7 +7,6 @@ from __future__ import annotations
 
 import logging
 import math
-import numbers
 import time as _time
 import warnings
 from collections.abc import Callable
@@ -17,9 +16,11 @@ import xarray as xr
 
 from .bodies import Layer
 from .contact import ConvergenceError
-from .inputs import check_tolerance, grid_of
+from .invariants import step_invariants, with_dataset
+from .inputs import check_tolerance, check_whole, grid_of, number
 from .labels import attrs_for
 from .materials import Elastic, material_of
+from .resolution import guard_stepper
 from .solvers.state import dot
 from .transient import SLIDE_PER_STEP, TimeStepWarning, TransientInterrupted, _check_slide, _prepare, _Record
 
@@ -103,14 +104,14 @@ def solve_reciprocating(
         where the absolute work is below the steps' error, as on an elastic body); ``attrs['status']``
         ``"settled"`` or not, ``attrs['slide_per_step']`` the largest slide of a step [grid spacings].
     """
-    for value, name in ((amplitude, "amplitude"), (frequency, "frequency")):
-        if isinstance(value, bool) or not isinstance(value, numbers.Real) or not math.isfinite(value) or value <= 0:
-            raise ValueError(f"{name} must be a finite number > 0, got {value!r}")
-    if steps_per_cycle is not None and (isinstance(steps_per_cycle, bool) or not isinstance(steps_per_cycle, int)
-                                        or steps_per_cycle < 4):
-        raise ValueError(f"steps_per_cycle must be None (by the slide a step) or an integer >= 4, got "
-                         f"{steps_per_cycle!r}")
-    if not isinstance(max_cycles, int) or not isinstance(min_cycles, int) or not 2 <= min_cycles <= max_cycles:
+    amplitude = number("amplitude", amplitude, lower=0.0, lower_open=True)
+    frequency = number("frequency", frequency, lower=0.0, lower_open=True)
+    mean_pressure = number("mean_pressure", mean_pressure, lower=0.0)
+    if steps_per_cycle is not None:
+        steps_per_cycle = check_whole(steps_per_cycle, "steps_per_cycle (None: by the slide a step)", 4)
+    min_cycles = check_whole(min_cycles, "min_cycles", 2)
+    max_cycles = check_whole(max_cycles, "max_cycles", 2)
+    if min_cycles > max_cycles:
         raise ValueError(f"need integers 2 <= min_cycles <= max_cycles, got min_cycles={min_cycles!r}, "
                          f"max_cycles={max_cycles!r}")
     check_tolerance(cycle_tol, "cycle_tol")
@@ -119,8 +120,7 @@ def solve_reciprocating(
         raise ValueError(f"tol {tol!r} must be at most a tenth of cycle_tol {cycle_tol!r}: the change between cycles "
                          "cannot settle below the error of the steps' solves (a rough profile at tol 1e-3 and 3e-4 "
                          "against cycle_tol 1e-3 did not settle in 40 cycles; 1e-4 settled in 6)")
-    if not isinstance(direction, numbers.Real) or not math.isfinite(direction):
-        raise ValueError(f"direction must be a finite angle [rad], got {direction!r}")
+    direction = number("direction (angle [rad])", direction)
     unit = np.array([math.cos(direction), math.sin(direction)])
     material = material_of(material, E, nu)
     grid = grid_of(heights, length)[1]
@@ -192,7 +192,7 @@ def solve_reciprocating(
                     ends = [stepper.history.state()]
     except ConvergenceError as err:
         ds = record.dataset(start, units=units, status=f"not converged in cycle {len(energies) + 1}: {err}")
-        raise ConvergenceError(str(ds.attrs["status"]), residual=err.residual, dataset=ds) from err
+        raise with_dataset(err, str(ds.attrs["status"]), ds) from err
     except KeyboardInterrupt:
         ds = record.dataset(start, units=units, status=f"interrupted in cycle {len(energies) + 1}")
         raise TransientInterrupted(ds.attrs["status"], ds) from None
@@ -217,7 +217,9 @@ def solve_reciprocating(
     ds.attrs.update(amplitude=float(amplitude), frequency=float(frequency), direction=float(direction),
                     steps_per_cycle=steps_per_cycle, slide_per_step=slide, cycles=len(energies),
                     cycle_tol=float(cycle_tol),
-                    max_cycles=max_cycles, initial="relaxed under the mean load at X = 0")
+                    max_cycles=max_cycles, initial="relaxed under the mean load at X = 0",
+                    invariants_checked=step_invariants(control))  # the settled cycle's energy balance: a warning
+    guard_stepper(ds, stepper, where="solve_reciprocating")
     return ds
 
 

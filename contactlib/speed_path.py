@@ -26,6 +26,7 @@ import numpy as np
 import xarray as xr
 
 from .contact import solve
+from .resolution import recording, report, worst
 from .analysis.friction import reusing_slopes
 from .bodies import reusing_kernels
 from .solvers.recycle import recycling
@@ -110,7 +111,8 @@ def solve_speeds(heights, sliding_velocities, *, recycle: bool = False, **kwargs
     if not sliding_velocities:
         raise ValueError("sliding_velocities is empty: give at least one velocity")
     speeds, pressures, out = [], [], []
-    with recycling() if recycle else contextlib.nullcontext(), reusing_slopes(), reusing_kernels():
+    with recycling() if recycle else contextlib.nullcontext(), reusing_slopes(), reusing_kernels(), \
+            recording() as seen:  # one resolution warning for the whole path, below
         for velocity in sliding_velocities:
             speed = float(np.linalg.norm(np.atleast_1d(np.asarray(velocity, dtype=float))))
             if not (np.isfinite(speed) and speed > 0):
@@ -120,4 +122,5 @@ def solve_speeds(heights, sliding_velocities, *, recycle: bool = False, **kwargs
             speeds.append(speed)
             pressures.append(ds.pressure.values)
             out.append(ds)
+    report([worst(seen)] if seen else [], where="solve_speeds", guarantee=kwargs.get("target_error") is not None)
     return out

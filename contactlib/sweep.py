@@ -17,6 +17,7 @@ import contextlib
 import datetime
 import hashlib
 import json
+import logging
 import math
 import os
 import pickle
@@ -29,10 +30,12 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
-from . import fft
+from . import fft, resolution
 from ._version import __version__
 from .contact import ConvergenceError
 from .labels import VARIABLES
+
+log = logging.getLogger(__name__)
 
 STATUS_OK, STATUS_NOT_CONVERGED, STATUS_BAD_INPUT = 0, 1, 2
 
@@ -42,6 +45,8 @@ SWEEP_VARIABLES: dict[str, dict[str, str]] = {
     "residual": VARIABLES["residual"],
     "seed": {"units": "1", "long_name": "random seed of the surface"},
     "n": {"units": "1", "long_name": "grid points per side"},
+    "predicted_resolution_error": {"units": "1", "long_name": "largest contact-area or pressure error the measured "
+                                   "resolution rules predict for the point's solves (contactlib.resolution)"},
 }
 
 _worker_wisdom: dict[str, str] = {}
@@ -72,13 +77,19 @@ def _prepare_worker(wisdom, threads: int) -> None:
 def evaluate_point(point_fn: Callable, params: dict, wisdom=None, threads: int = 1, **extra) -> dict:
     """Run one point, turning the expected failures into a status code (runs on a worker).
 
-    Outputs whose names start with ``_`` (e.g. ``_warm_start``) are returned apart, under ``"private"``.
+    Outputs whose names start with ``_`` (e.g. ``_warm_start``) are returned apart, under ``"private"``. The
+    resolution guard's warnings of the point's solves are recorded, not printed: the largest prediction is the
+    output ``predicted_resolution_error`` (:func:`contactlib.resolution.recording`; :func:`run_grid` sums them up
+    in one line).
     """
     _prepare_worker(wisdom, threads)
     start = time.perf_counter()
     values, message = {}, ""
     try:
-        values = dict(point_fn(**params, **extra))
+        with resolution.recording() as seen:
+            values = dict(point_fn(**params, **extra))
+        if seen:
+            values["predicted_resolution_error"] = max(r.predicted_error for r in seen)
         status = STATUS_OK
         residual = float(values.pop("residual", math.nan))
     except ConvergenceError as err:
@@ -224,7 +235,10 @@ def run_grid(
     Returns
     -------
     xarray.Dataset with dims = the swept names (+ the fields' own dims), ``status``, ``residual``,
-    ``wall_time`` and the point outputs.
+    ``wall_time`` and the point outputs; where the points called the library's entry points,
+    ``predicted_resolution_error`` (the resolution guard's prediction, recorded instead of warned,
+    :func:`evaluate_point`) and, where some point's exceeds 1 %, ``attrs['resolution_summary']``, the one line
+    also logged (logger ``contactlib.sweep``, WARNING).
 
     Examples
     --------
@@ -281,7 +295,27 @@ def run_grid(
         for future in as_completed(futures):
             finish(*futures[future], future.result())
             future.release()
-    return combine(coords, [results[k] for k in keys], labels=labels, attrs=attrs)
+    ds = combine(coords, [results[k] for k in keys], labels=labels, attrs=attrs)
+    summary = resolution_summary(ds)
+    if summary:  # one line for the sweep, where each point's solves would have warned
+        ds.attrs["resolution_summary"] = summary
+        log.warning("%s%s", f"{ds.attrs['study']}: " if "study" in ds.attrs else "", summary)
+    return ds
+
+
+def resolution_summary(ds: xr.Dataset) -> str:
+    """One line on the points whose predicted resolution error exceeds :data:`contactlib.resolution.THRESHOLD`
+    (empty where none does, or none was measured)."""
+    if "predicted_resolution_error" not in ds:
+        return ""
+    error = ds["predicted_resolution_error"].values
+    measured = np.isfinite(error)
+    over = measured & (error > resolution.THRESHOLD)
+    if not over.any():
+        return ""
+    return (f"resolution: {int(over.sum())} of {int(measured.sum())} points predict more than "
+            f"{resolution.THRESHOLD:.0%} error in the contact area or pressure (up to {float(np.nanmax(error)):.1%}, "
+            "variable predicted_resolution_error; contactlib.resolution)")
 
 
 def _tasks(points: list[dict], keys: list[str], path_dim: str | None, fingerprint: str) -> dict:

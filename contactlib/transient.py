@@ -31,10 +31,13 @@ from .analysis.friction import directional_slope
 from .bodies import Layer, body_model
 from .contact import ConvergenceError, constrained_solve
 from .hereditary import PronyHistory
-from .inputs import check_friction, check_iterations, check_tolerance, check_whole, grid_of, periodic_of, \
-    touches_edge
+from .invariants import check_relaxed_limit, contact_checks, relaxed_hold, step_invariants, verify, with_dataset
+from .inputs import check_friction, check_iterations, check_tolerance, check_whole, grid_of, number, periodic_of, \
+    real_values, time_values, touches_edge
 from .labels import attrs_for
 from .materials import Elastic, material_of
+from .solvers.state import height_scale
+from .resolution import guard_stepper
 
 log = logging.getLogger(__name__)
 
@@ -170,12 +173,38 @@ def solve_transient(
     except ConvergenceError as err:
         ds = record.dataset(start, units=(length_unit, pressure_unit, time_unit),
                             status=f"not converged at step {record.done} (t = {times[record.done]:g}): {err}")
-        raise ConvergenceError(str(ds.attrs["status"]), residual=err.residual, dataset=ds) from err
+        raise with_dataset(err, str(ds.attrs["status"]), ds) from err
     except KeyboardInterrupt:
         ds = record.dataset(start, units=(length_unit, pressure_unit, time_unit),
                             status=f"interrupted after {record.done} of {n} steps")
         raise TransientInterrupted(ds.attrs["status"], ds) from None
-    return record.dataset(start, units=(length_unit, pressure_unit, time_unit), status="completed")
+    ds = record.dataset(start, units=(length_unit, pressure_unit, time_unit), status="completed")
+    _check_relaxed_limit(ds, stepper, times, loads, positions, control, step)
+    guard_stepper(ds, stepper, where="solve_transient")
+    return ds
+
+
+def _check_relaxed_limit(ds, stepper, times, loads, positions, control, last) -> None:
+    """Record the invariants the steps met and, after a hold long enough (:func:`.invariants.relaxed_hold`), check
+    the last step against the relaxed elastic solve (one warm-started solve) and record the comparison
+    (``attrs['relaxed_limit']``, ``'relaxed_limit_bound'``, ``'relaxed_memory_left'``): raises
+    :class:`.invariants.InvariantError` with ``ds`` where it fails."""
+    checked = step_invariants(control)
+    memory = relaxed_hold(times, loads, positions, stepper.material, control)
+    if memory is None:
+        ds.attrs["invariants_checked"] = checked
+        return
+    relaxed = stepper._solve(stepper.material.E0, None, loads[-1], control, positions[-1])
+    key = "penetration" if control == "mean_pressure" else "mean_pressure"  # the response to the held control
+    scale = height_scale(stepper.values) if key == "penetration" else abs(relaxed[key]) or 1.0
+    check = check_relaxed_limit(last[key], relaxed[key], tol=stepper.tol, scale=scale, memory_left=memory)
+    ds.attrs.update(relaxed_limit=check.violation, relaxed_limit_bound=check.bound, relaxed_memory_left=memory)
+    try:
+        verify([check], ds, where="solve_transient")
+    finally:
+        ds.attrs["invariants_checked"] = f"{checked}, relaxed_limit"
+        if ds.attrs.get("converged") == 0:
+            ds.attrs["status"] = ds.attrs["convergence_message"]
 
 
 class _Stepper:
@@ -284,6 +313,8 @@ class _Stepper:
                                    f"{state.residual:.3e} > tol {self.tol:.1e}", residual=state.residual, dataset=None)
         if not self.periodic and touches_edge(state.pressure):
             raise ValueError("periodic=False: the contact reaches the edge of the window; enlarge the window")
+        verify(contact_checks(state, effective, tol=self.tol, mean_pressure=args["mean_pressure"],
+                              penetration=args["penetration"]), where=f"{state.solver} step")
         self.previous, self.pressure = self.pressure, state.pressure
         p = state.pressure
         mean = float(p.mean())
@@ -400,25 +431,16 @@ def _check_slide(positions: np.ndarray, stepper: "_Stepper", what: str, conseque
 
 
 def _times(times) -> np.ndarray:
-    """The instants as a finite, strictly increasing 1D array."""
-    times = np.asarray(times, dtype=float)
-    if times.ndim != 1 or times.size < 1:
-        raise ValueError(f"times must be a 1D sequence of at least one time, got shape {times.shape}")
-    if not np.all(np.isfinite(times)):
-        raise ValueError("times must be finite")
-    if np.any(np.diff(times) <= 0):
-        k = int(np.argmax(np.diff(times) <= 0))
-        raise ValueError(f"times must increase strictly (every dt > 0): times[{k + 1}] = {times[k + 1]!r} after "
-                         f"times[{k}] = {times[k]!r}")
-    return times
+    """The instants as a finite, strictly increasing 1D array (:func:`contactlib.inputs.time_values`)."""
+    return time_values(times, "times")
 
 
 def _history(load, times: np.ndarray, name: str) -> np.ndarray:
-    """A load as one value per time: a constant, a sequence or a function of time; NaN refused."""
+    """A load as one value per time: a constant, a sequence or a function of time; NaN and non-numbers refused."""
     if callable(load):
-        values = np.array([float(load(t)) for t in times])
+        values = real_values([number(f"{name}(t = {float(t):g})", load(t), finite=False) for t in times], name)
     else:
-        values = np.asarray(load, dtype=float)
+        values = real_values(load, name)
         if values.ndim == 0:
             values = np.full(times.shape, float(values))
         elif values.shape != times.shape:
@@ -433,8 +455,8 @@ def _positions(path, times: np.ndarray, dim: int) -> np.ndarray:
     """The path as an ``(n, dim)`` array of finite positions (zeros without a path)."""
     if path is None:
         return np.zeros((times.size, dim))
-    values = (np.array([np.atleast_1d(np.asarray(path(t), dtype=float)) for t in times]) if callable(path)
-              else np.asarray(path, dtype=float))
+    values = (real_values([np.atleast_1d(real_values(path(t), "path")) for t in times], "path") if callable(path)
+              else real_values(path, "path"))
     if values.ndim == 1 and dim == 1:
         values = values[:, None]
     if values.shape != (times.size, dim):

@@ -261,7 +261,8 @@ def test_adhesion_curve_wavy_both_routes():
         law = Adhesion(work=WORK, model="jkr") if model == "jkr" else cohesive_law(model, 0.004)
         ds = contactlib.adhesion_curve(h, E=1.0, nu=0.0, adhesion=law, penetrations=path)
         assert ds.sizes["step"] == 2 * path.size - 1 and int(ds.unloading.sum()) == path.size - 1
-        assert float(ds.pull_off_pressure) == pytest.approx(float(ds.mean_pressure.min()))
+        if model != "jkr":  # jkr: the least load of its equilibrium curve G = w, not of the sampled states
+            assert float(ds.pull_off_pressure) == pytest.approx(float(ds.mean_pressure.min()))
         assert abs(float(ds.pull_off_pressure) - p_min) / P_STAR < 0.01
         assert float(ds.pull_off_penetration) < 0 and float(ds.hysteresis_energy) > 0
         assert math.isfinite(float(ds.jump_in_penetration)) and int(ds.jump.sum()) >= 2
@@ -358,7 +359,7 @@ def test_bad_scene_named():
     x = np.arange(32) / 32 - 0.5
     pyramid = -(np.abs(x)[:, None] + np.abs(x)[None, :]) * 0.01  # symmetric, but no surface of revolution
     with pytest.raises(ValueError, match="revolution"):
-        contactlib.solve(pyramid, E=1.0, nu=0.0, penetration=0.001, periodic=False,
+        contactlib.solve(pyramid, length=1.0, E=1.0, nu=0.0, penetration=0.001, periodic=False,
                          adhesion=Adhesion(work=1e-4, model="jkr"))
     h = contactlib.surfaces.wavy(64, amplitude=0.01)
     asym = h + 0.001 * np.sin(2 * np.pi * h.x)
@@ -547,15 +548,16 @@ def test_adhesion_curve_flags_failed_steps_and_withholds_its_scalars():
     x = (np.arange(128) - 64) / 128
     cyl = -x**2 / 2
     law = Adhesion(work=1e-4, range=2e-3)
-    failed = contactlib.adhesion_curve(cyl, E=1.0, nu=0.3, adhesion=law, penetrations=[0, 0.004], tol=1e-300)
+    failed = contactlib.adhesion_curve(cyl, length=1.0, E=1.0, nu=0.3, adhesion=law, penetrations=[0, 0.004],
+                                       tol=1e-300)
     assert failed.attrs["converged"] == 0 and "did not converge" in failed.attrs["convergence_message"]
     assert np.any(failed.converged.values == 0) and np.all(np.isfinite(failed.residual.values))
     assert np.isnan(float(failed.pull_off_pressure)) and np.isnan(float(failed.hysteresis_energy))
-    fine = contactlib.adhesion_curve(cyl, E=1.0, nu=0.3, adhesion=law, penetrations=[0, 0.004])
+    fine = contactlib.adhesion_curve(cyl, length=1.0, E=1.0, nu=0.3, adhesion=law, penetrations=[0, 0.004])
     assert fine.attrs["converged"] == 1 and float(fine.pull_off_pressure) < 0
     assert np.all(fine.residual.values <= 1e-6) and fine.residual.attrs["units"] == "1"
     with pytest.raises(ValueError, match="adhesion must be a contactlib.Adhesion"):
-        contactlib.adhesion_curve(cyl, E=1.0, nu=0.3, adhesion=None, penetrations=[0, 0.004])
+        contactlib.adhesion_curve(cyl, length=1.0, E=1.0, nu=0.3, adhesion=None, penetrations=[0, 0.004])
 
 
 def test_non_periodic_window_cutting_the_cohesive_zone_is_refused():

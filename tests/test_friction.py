@@ -76,7 +76,8 @@ def _full_contact_amplitude(dim, thickness, nu, base):
         h, q = h0 * np.cos(2 * np.pi * x)[:, None] * np.cos(2 * np.pi * x)[None, :], 2 * np.pi * np.sqrt(2)
     Czz = transfer_matrix_compliance(q, thickness, E, min(nu, 0.4999999), base)[0]
     amplitude = h0 / Czz
-    out = contactlib.solve(h, E=E, nu=nu, mean_pressure=2 * amplitude, layer=contactlib.Layer(thickness, base),
+    out = contactlib.solve(h, length=1.0, E=E, nu=nu, mean_pressure=2 * amplitude,
+                           layer=contactlib.Layer(thickness, base),
                            tol=1e-12)
     assert out.attrs["full_contact"] == 1
     p = out.pressure.values - float(out.pressure.mean())
@@ -101,9 +102,10 @@ def test_thin_layers_confined_stiffer_remote_softer():
     n = 1024
     h = 1e-3 * np.cos(2 * np.pi * np.arange(n) / n)
     load = dict(E=1.0, nu=0.5, mean_pressure=1e-4)
-    half = float(contactlib.solve(h, **load).contact_area)
+    half = float(contactlib.solve(h, length=1.0, **load).contact_area)
     thick = (1.0, 0.3, 0.1, 0.03)
-    area = {base: [float(contactlib.solve(h, layer=contactlib.Layer(t, base), **load).contact_area) for t in thick]
+    area = {base: [float(contactlib.solve(h, length=1.0, layer=contactlib.Layer(t, base), **load).contact_area)
+                   for t in thick]
             for base in ("confined", "remote_pressure")}
     assert area["confined"][0] == pytest.approx(half, abs=2 / n)
     assert np.all(np.diff(area["confined"]) <= 0) and np.all(np.diff(area["remote_pressure"]) >= 0)
@@ -115,7 +117,8 @@ def test_full_contact_is_reported_not_an_error():
     n = 256
     x = np.arange(n) / n
     h = 1e-3 * np.cos(2 * np.pi * x) + 2e-4 * np.cos(6 * np.pi * x)
-    out = contactlib.solve(h, E=1.0, nu=0.3, mean_pressure=1e-2, layer=contactlib.Layer(0.05, "remote_pressure"),
+    out = contactlib.solve(h, length=1.0, E=1.0, nu=0.3, mean_pressure=1e-2,
+                           layer=contactlib.Layer(0.05, "remote_pressure"),
                            friction=0.5)
     assert out.attrs["full_contact"] == 1 and "full contact" in out.attrs["full_contact_message"]
     assert float(out.contact_area) == 1.0
@@ -192,8 +195,8 @@ def test_2d_sliding_direction_rotates_with_the_surface():
     """The same scene turned by 90 degrees, sliding along y, gives the transposed answer."""
     h = contactlib.surfaces.self_affine(64, hurst=0.8, q_roll=1, q_cutoff=8, rms_slope=0.13, seed=2).values
     kw = dict(E=1.0, nu=0.5, mean_pressure=0.01, friction=0.8, layer=contactlib.Layer(0.03), tol=1e-10)
-    a = contactlib.solve(h, sliding_direction=0.0, **kw)
-    b = contactlib.solve(h.T.copy(), sliding_direction=np.pi / 2, **kw)
+    a = contactlib.solve(h, length=1.0, sliding_direction=0.0, **kw)
+    b = contactlib.solve(h.T.copy(), length=1.0, sliding_direction=np.pi / 2, **kw)
     assert a.attrs["coupling"] == "normal-tangential"
     np.testing.assert_allclose(b.pressure.values.T, a.pressure.values, atol=1e-5 * float(a.pressure.max()))
     assert float(b.friction_coefficient_interlocking) == pytest.approx(float(a.friction_coefficient_interlocking),
@@ -218,16 +221,16 @@ def test_1d_sliding_towards_minus_x_is_the_mirror_image(scene):
         h = contactlib.surfaces.paraboloid(257, length=1.0, radius=1.0, dim=1).values + tilt
         kw.update(periodic=False, mean_pressure=2e-3)
         mirror = (lambda a: a[::-1])  # an odd number of points: the centre stays put
-    back = contactlib.solve(h, sliding_direction=np.pi, **kw)
-    ahead = contactlib.solve(mirror(h), sliding_direction=0.0, **kw)
+    back = contactlib.solve(h, length=1.0, sliding_direction=np.pi, **kw)
+    ahead = contactlib.solve(mirror(h), length=1.0, sliding_direction=0.0, **kw)
     np.testing.assert_allclose(back.pressure.values, mirror(ahead.pressure.values), rtol=0,
                                atol=1e-8 * float(ahead.pressure.max()))
-    same = contactlib.solve(h, sliding_direction=0.0, **kw)
+    same = contactlib.solve(h, length=1.0, sliding_direction=0.0, **kw)
     assert np.abs(back.pressure.values - same.pressure.values).max() > 0.01 * float(same.pressure.max())
     assert float(back.friction_coefficient_interlocking) == pytest.approx(
         float(ahead.friction_coefficient_interlocking), rel=1e-6)
     with pytest.raises(ValueError, match="sliding_direction must be 0 .* or pi"):
-        contactlib.solve(h, sliding_direction=1.0, **kw)
+        contactlib.solve(h, length=1.0, sliding_direction=1.0, **kw)
 
 
 def test_geometric_coupling_on_thin_incompressible_layer_resists_sliding():
@@ -253,7 +256,7 @@ def test_bad_scene_input_names_the_parameter(kwargs, name):
     h = np.cos(2 * np.pi * np.arange(64) / 64) * 1e-3
     args = {"E": 1.0, "nu": 0.3, "mean_pressure": 1e-4, **kwargs}
     with pytest.raises(ValueError, match=name):
-        contactlib.solve(h, **args)
+        contactlib.solve(h, length=1.0, **args)
 
 
 @pytest.mark.parametrize("thickness", [0.0, -1.0, float("nan"), float("inf")])

@@ -103,7 +103,7 @@ def test_residual_definition():
 
 
 def test_flat_surface_is_full_contact(material):
-    out = contactlib.solve(np.zeros((16, 16)), E=material["E"], nu=material["nu"], mean_pressure=0.3)
+    out = contactlib.solve(np.zeros((16, 16)), length=1.0, E=material["E"], nu=material["nu"], mean_pressure=0.3)
     assert float(out.contact_area) == 1.0
     np.testing.assert_allclose(out.pressure.values, 0.3, rtol=1e-14)
 

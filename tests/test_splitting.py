@@ -285,18 +285,21 @@ def test_a_finish_from_the_best_iterate_counts_every_iteration(monkeypatch):
     assert finished.converged and finished.iterations == 3000 + 5  # its best iterate is the 2770th
 
 
-def test_off_axis_sliding_near_full_contact_is_finished_from_the_fixed_point():
+def test_off_axis_sliding_near_full_contact_converges():
     """A 64^2 surface at 99.7 % contact sliding off the grid's axes (E_inf/E0 = 1000, V tau q0 = 1e-3 at 2.5 rad):
     the Anderson mixing of Douglas-Rachford met a singular Gram matrix (a raw LinAlgError, "Singular matrix");
-    with that guarded, Douglas-Rachford stagnates at 2e-5 and the fixed point stalls at 2.4e-8. The Newton loop
-    converges from the fixed point's state; its answer is the fixed point's own (asked for 1e-7, it stalls at
-    2.4e-7) to what that residual allows."""
+    with that guarded, Douglas-Rachford stagnated at 2e-5 and the fixed point stalled at 2.4e-8, and only the
+    Newton loop from the fixed point's state converged (8 s). The stagnation was the viscoelastic factor's odd
+    part on the Nyquist column, which the inverse real transform did not apply as the resolvent assumed: made even
+    there (:mod:`contactlib.kernels.nyquist`), Douglas-Rachford converges alone (1 s; on 63^2 and 65^2, with no
+    Nyquist mode, it did before). Its answer is the fixed point's own (asked for 1e-7, it stalls at 2.4e-7) to what
+    that residual allows."""
     h = profile(64, dim=2, cutoff=8, seed=0)
     q0 = q0_of(h)
     V = (1e-3 / q0 * np.cos(2.5), 1e-3 / q0 * np.sin(2.5))
     out = contactlib.solve(h, material=GLASSY_1000, mean_pressure=0.5, sliding_velocity=V, tol=1e-8)
     assert out.attrs["converged"] == 1 and float(out.residual) <= 1e-8
-    assert out.attrs["solver"].startswith("coupled") and out.attrs["solver"].endswith("+semismooth-gmres")
+    assert out.attrs["solver"] == "douglas-rachford"
     s = setup(h, GLASSY_1000, 0.5, V)
     loose = solve_coupled(s._symmetric, s.body.coupling, s.values, **dict(s.solver_args, tol=1e-7))
     assert loose.residual < 1e-6 and 0.99 < float(out.contact_area) < 1.0

@@ -157,7 +157,7 @@ def test_path_is_a_translation():
                                      tol=1e-10)
     for k in range(len(times)):
         shifted = np.roll(h.values, tuple(int(round(c * 64)) for c in path[k]), axis=(0, 1))
-        ref = contactlib.solve(shifted, E=1.0, nu=0.3, mean_pressure=0.02, tol=1e-10)
+        ref = contactlib.solve(shifted, length=1.0, E=1.0, nu=0.3, mean_pressure=0.02, tol=1e-10)
         p = out.pressure.isel(saved_time=k).values
         assert np.abs(p - ref.pressure.values).max() < 1e-6 * ref.pressure.values.max()
         assert float(out.contact_area[k]) == float(ref.contact_area)
@@ -336,7 +336,8 @@ def test_prony_history_step_of_zero_is_glassy_and_long_steps_relax():
     hist = PronyHistory(m, (4,))
     assert hist.coefficients(0.0)[0] == pytest.approx(m.E_inf, rel=1e-15)
     assert hist.coefficients(1e6)[0] == pytest.approx(m.E0, rel=1e-5)
-    assert contactlib.solve_transient(np.cos(2 * np.pi * np.arange(16) / 16), E=1.0, nu=0.3, times=[0.0, 1.0],
+    assert contactlib.solve_transient(np.cos(2 * np.pi * np.arange(16) / 16), length=1.0, E=1.0, nu=0.3,
+                                      times=[0.0, 1.0],
                                       mean_pressure=0.1).dissipated_power.max() == 0.0  # an elastic body
 
 

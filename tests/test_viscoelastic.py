@@ -134,7 +134,7 @@ def test_reduction_rule_compares_the_complex_modulus():
 def test_compiled_factor_and_deviations_equal_the_materials_complex_modulus():
     """The compiled per-speed pass (:func:`sliding_factor_and_deviations`) sums the Prony series itself: against
     ``E0 / material.complex_modulus`` on the grid and the deviations from it, for a three-branch material on an odd
-    and an even 2D grid at an oblique speed."""
+    and an even 2D grid at an oblique speed; on the Nyquist planes the mean over the signs of their component."""
     from contactlib.kernels.viscoelastic import sliding_factor_and_deviations, sliding_frequency
 
     material = Viscoelastic(E0=2.0, prony=[(5.0, 0.01), (30.0, 0.3), (100.0, 7.0)], nu=0.4)
@@ -143,8 +143,19 @@ def test_compiled_factor_and_deviations_equal_the_materials_complex_modulus():
         velocity = (0.7, -0.2)
         factor, deviations = sliding_factor_and_deviations(grid, material, velocity, (material.E0, material.E_inf))
         modulus = material.complex_modulus(sliding_frequency(grid, velocity))
-        expected = real_where_self_conjugate(grid, material.E0 / modulus)
+        expected = material.E0 / modulus
+        # a Nyquist row (an even first axis) or column (an even second one): the mean over the signs of its component
+        qx, qy = (q.ravel() for q in grid.wavevectors())
+        at = lambda qx, qy: material.E0 / material.complex_modulus(-(qx * velocity[0] + qy * velocity[1]))  # noqa: E731
+        i, j = shape[0] // 2, shape[1] // 2
+        if shape[0] % 2 == 0:
+            expected[i, :] = (at(qx[i], qy) + at(-qx[i], qy)) / 2
+        if shape[1] % 2 == 0:
+            expected[:, j] = (at(qx, qy[j]) + at(qx, -qy[j])) / 2
+        if shape[0] % 2 == 0 and shape[1] % 2 == 0:
+            expected[i, j] = sum(at(a * qx[i], b * qy[j]) for a in (1, -1) for b in (1, -1)) / 4
         assert np.max(np.abs(factor - expected)) < 1e-14
+        assert np.array_equal(factor, real_where_self_conjugate(grid, factor.copy()))  # real where self-conjugate
         rest = modulus.reshape(-1)[1:]  # every wavevector but q = 0
         for deviation, reference in zip(deviations, (material.E0, material.E_inf)):
             assert deviation == pytest.approx(float(np.abs(rest - reference).max()) / reference, rel=1e-13)

@@ -23,13 +23,15 @@ import numpy as np
 import scipy.fft
 
 from ..grid import Grid
+from ..kernels.nyquist import even_on_nyquist, nyquist_planes, wavevector_along
 from ..kernels.tensor import surface_green_tensor
 from .statistics import _half_spectrum_weights, _values_and_grid
 
 
 def _along(grid: Grid, velocity) -> np.ndarray:
-    """``q . V`` [rad/time] on the rfft layout."""
-    return sum(q * float(v) for q, v in zip(grid.wavevectors(), velocity))
+    """``q . V`` [rad/time] on the rfft layout, even on the Nyquist planes (:mod:`contactlib.kernels.nyquist`): the
+    rate ``-V . grad`` of a steady field, whose multiplier is odd, as the body's operator takes it."""
+    return wavevector_along(grid, velocity)
 
 
 def dissipated_power(displacement, *, material, sliding_velocity, length=None, layer=None) -> float:
@@ -60,9 +62,23 @@ def dissipated_power(displacement, *, material, sliding_velocity, length=None, l
     unit = surface_green_tensor(grid, 1.0, material.nu, *((layer.thickness, layer.base) if layer else ()))
     nonzero = grid.wavenumber() > 0
     loss = np.zeros(grid.spectral_shape())
-    loss[nonzero] = material.complex_modulus(along[nonzero]).imag / unit.normal[nonzero]
+    loss[nonzero] = _body_modulus(grid, material, velocity)[nonzero].imag / unit.normal[nonzero]
     power = np.abs(np.fft.rfftn(values)) ** 2 * _half_spectrum_weights(grid)
     return float(np.sum(power * along * loss) / grid.size**2)
+
+
+def _body_modulus(grid: Grid, material, velocity) -> np.ndarray:
+    """``E*(q . V)`` [pressure] on the rfft layout as the body's operator holds it: on the Nyquist planes its
+    compliance ``1 / E*`` is the mean over the signs of the Nyquist components (as
+    :func:`contactlib.kernels.viscoelastic.steady_sliding_factor` takes the factor ``E0 / conj E*``)."""
+    def modulus(*q):
+        return material.complex_modulus(sum(qi * float(v) for qi, v in zip(q, velocity)))
+
+    values = modulus(*grid.wavevectors())
+    planes = nyquist_planes(grid)
+    compliance = even_on_nyquist(grid, lambda *q: 1.0 / modulus(*q), np.zeros(values.shape, dtype=complex))
+    values[planes] = 1.0 / compliance[planes]
+    return values
 
 
 def traction_power(grid: Grid, pressure: np.ndarray, tensor, sliding_velocity, *, friction: float = 0.0,

@@ -13,6 +13,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..grid import Grid
+from .nyquist import even_on_nyquist
 
 #: image orders summed per axis by the periodic Love multiplier (alternating tail: error ~ M^-2)
 LOVE_IMAGES_2D = 12
@@ -52,12 +53,21 @@ def halfspace_love_multiplier(grid: Grid, E_star: float, *, images: int | None =
     ``k + m K`` (a viscoelastic body in steady sliding: each alias oscillates at its own frequency);
     the result is then complex.
     """
-    q = grid.wavevectors()
-    d = grid.spacing
     M = images if images is not None else (LOVE_IMAGES_2D if grid.dim == 2 else LOVE_IMAGES_1D)
     orders = np.arange(-M, M + 1)
-    out = np.zeros(grid.spectral_shape(), dtype=float if factor is None else complex)
-    if grid.dim == 1:
+    out = _love_image_sum(grid.wavevectors(), grid.spacing, E_star, orders, factor)
+    if factor is not None:  # odd through the factor: even on the Nyquist planes (the image set is not symmetric)
+        out = even_on_nyquist(grid, lambda *q: _love_image_sum(q, grid.spacing, E_star, orders, factor), out)
+    out[(0,) * grid.dim] = 0.0  # zero-mean displacement (the image terms vanish there up to rounding)
+    return out
+
+
+def _love_image_sum(q, d, E_star: float, orders: np.ndarray, factor) -> np.ndarray:
+    """The image sum of :func:`halfspace_love_multiplier` at the wavevector components ``q`` (broadcastable
+    arrays) on a grid of spacing ``d``."""
+    shape = np.broadcast_shapes(*(np.shape(c) for c in q))
+    out = np.zeros(shape, dtype=float if factor is None else complex)
+    if len(q) == 1:
         K = 2 * np.pi / d[0]
         for m in orders:
             qm = q[0] + m * K
@@ -65,7 +75,6 @@ def halfspace_love_multiplier(grid: Grid, E_star: float, *, images: int | None =
             with np.errstate(divide="ignore", invalid="ignore"):
                 term = np.where(absq > 0, 2.0 / (E_star * absq) * _sinc(qm * d[0] / 2), 0.0)
             out += term if factor is None else term * factor(qm)
-        out[0] = 0.0  # zero-mean displacement (the image terms vanish there up to rounding)
         return out
     Kx, Ky = 2 * np.pi / d[0], 2 * np.pi / d[1]
     for mx in orders:
@@ -77,7 +86,6 @@ def halfspace_love_multiplier(grid: Grid, E_star: float, *, images: int | None =
             with np.errstate(divide="ignore", invalid="ignore"):
                 term = np.where(absq > 0, sx * _sinc(qy * d[1] / 2) * 2.0 / (E_star * absq), 0.0)
             out += term if factor is None else term * factor(qx, qy)
-    out[0, 0] = 0.0
     return out
 
 

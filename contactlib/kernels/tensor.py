@@ -28,6 +28,7 @@ import numpy as np
 from ..grid import Grid
 from .elastic import _offsets
 from .layer import halfspace_factors, layer_factors, zero_mode_compliance
+from .nyquist import unit_projections
 
 
 @dataclass(frozen=True)
@@ -49,32 +50,32 @@ class SurfaceGreenTensor:
     def coupling_multiplier(self, grid: Grid, direction: float) -> np.ndarray:
         """``-i c (q . s)/|q|``: the normal displacement per unit tangential traction along
         ``s = (cos direction, sin direction)`` (1D: ``cos direction = +-1``, along ``+-x``) [length/pressure],
-        complex."""
-        q = grid.wavevectors()
-        k = grid.wavenumber()
-        safe = np.where(k > 0, k, 1.0)
-        along = np.sign(q[0]) * np.cos(direction) if grid.dim == 1 else \
-            (q[0] * np.cos(direction) + q[1] * np.sin(direction)) / safe
-        return -1j * self.coupling * np.where(k > 0, along, 0.0)
+        complex. Odd in ``q``: its component along a Nyquist wavenumber is zero (:mod:`.nyquist`)."""
+        n = unit_projections(grid)
+        if grid.dim == 1:
+            along = n["x"] * np.cos(direction)
+        else:
+            along = n["x"] * np.cos(direction) + n["y"] * np.sin(direction)
+        return -1j * self.coupling * along
 
     def tangential_displacement(self, grid: Grid, pressure_spectrum: np.ndarray, traction_spectra) -> tuple:
         """In-plane surface displacement spectra ``(u_x,)`` (1D) or ``(u_x, u_y)`` (2D) due to a pressure
-        and a tangential traction (its spectra per axis), unnormalised like :func:`numpy.fft.rfftn`."""
-        q = grid.wavevectors()
-        k = grid.wavenumber()
-        safe = np.where(k > 0, k, 1.0)
+        and a tangential traction (its spectra per axis), unnormalised like :func:`numpy.fft.rfftn`.
+
+        2D, with ``n = q/|q|`` and ``(t_x, t_y)`` the traction: ``u_x = i c n_x p + Cxx (n_x^2 t_x + n_x n_y t_y)
+        + Canti (n_y^2 t_x - n_x n_y t_y)`` and ``u_y`` its mirror; the odd products (``n_x``, ``n_x n_y``) are
+        zero along a Nyquist wavenumber (:mod:`.nyquist`)."""
+        n = unit_projections(grid)
         if grid.dim == 1:
-            n = np.sign(q[0])
-            return (1j * self.coupling * n * pressure_spectrum + self.inplane * traction_spectra[0],)
-        nx, ny = np.where(k > 0, q[0] / safe, 0.0), np.where(k > 0, q[1] / safe, 0.0)
-        along = nx * traction_spectra[0] + ny * traction_spectra[1]
-        across = -ny * traction_spectra[0] + nx * traction_spectra[1]
-        normal_part = 1j * self.coupling * pressure_spectrum + self.inplane * along
-        ux = normal_part * nx - self.antiplane * across * ny
-        uy = normal_part * ny + self.antiplane * across * nx
+            return (1j * self.coupling * n["x"] * pressure_spectrum + self.inplane * traction_spectra[0],)
+        tx, ty = traction_spectra
+        normal_part = 1j * self.coupling * pressure_spectrum
+        inplane, antiplane = self.inplane, self.antiplane
+        ux = normal_part * n["x"] + inplane * (n["xx"] * tx + n["xy"] * ty) + antiplane * (n["yy"] * tx - n["xy"] * ty)
+        uy = normal_part * n["y"] + inplane * (n["xy"] * tx + n["yy"] * ty) + antiplane * (n["xx"] * ty - n["xy"] * tx)
         # q = 0: a uniform traction shears the body uniformly (no direction to split along)
-        ux[0, 0] = self.inplane[0, 0] * traction_spectra[0][0, 0]
-        uy[0, 0] = self.inplane[0, 0] * traction_spectra[1][0, 0]
+        ux[0, 0] = inplane[0, 0] * tx[0, 0]
+        uy[0, 0] = inplane[0, 0] * ty[0, 0]
         return ux, uy
 
 

@@ -23,11 +23,13 @@ The ``q = 0`` mode does not move: it is relaxed (``factor = 1``).
 from __future__ import annotations
 
 import itertools
+from functools import partial
 
 import numba
 import numpy as np
 
 from ..grid import Grid
+from .nyquist import even_on_nyquist
 
 
 def sliding_frequency(grid: Grid, velocity) -> np.ndarray:
@@ -48,8 +50,10 @@ def steady_sliding_factor(grid: Grid, material, velocity) -> np.ndarray:
     """``E0 / E*(omega(q))`` on the rfft layout [1], complex: the factor of every elastic multiplier at
     the relaxed modulus ``E0`` (module docstring). 1 at ``q = 0`` and at zero speed.
 
-    The modes that are their own mirror image (every index 0 or Nyquist) keep the real part: a real
-    transform cannot carry an imaginary multiplier there (the inverse rfft drops it).
+    Its imaginary part is odd in ``q``: on the Nyquist planes it is the mean over the signs of the Nyquist
+    components (:func:`.nyquist.even_on_nyquist`), so that a mirrored scene gives the mirrored answer. On the
+    modes that are their own mirror image (every index 0 or Nyquist) that mean is real, as a real transform
+    needs (the inverse rfft drops an imaginary part there).
     """
     return sliding_factor_and_deviations(grid, material, velocity, ())[0]
 
@@ -64,7 +68,8 @@ def sliding_factor_and_deviations(grid: Grid, material, velocity, references) ->
     taus = np.array([tau for _, tau in material.prony], dtype=float)
     refs = np.array(references, dtype=float)
     deviations = _modulus_pass(omega, float(material.E0), moduli, taus, refs, factor)
-    factor = real_where_self_conjugate(grid, factor.reshape(grid.spectral_shape()))
+    factor = even_on_nyquist(grid, partial(sliding_factor, material, velocity), factor.reshape(grid.spectral_shape()))
+    factor = real_where_self_conjugate(grid, factor)  # the mean is real there, to round-off: exactly so
     return factor, tuple(float(d) for d in deviations)
 
 

@@ -1,5 +1,8 @@
-"""Analytic reference solutions, shared by tests, benchmarks and figures."""
+"""Analytic reference solutions, shared by tests, benchmarks and figures: Hertz, Westergaard, the adhesive sphere and
+cylinder (JKR, DMT, Maugis), the steadily sliding viscoelastic cylinder, Hunter's rolling cylinder and the
+viscoelastic profile. All are imported here, so ``contactlib.reference.adhesive`` works without a separate import
+(none of them imports the contact solvers' entry points: no cycle, and numpy and scipy only)."""
 
-from . import hertz, westergaard
+from . import adhesive, hertz, hunter, sliding_cylinder, viscoelastic_profile, westergaard
 
-__all__ = ["hertz", "westergaard"]
+__all__ = ["adhesive", "hertz", "hunter", "sliding_cylinder", "viscoelastic_profile", "westergaard"]

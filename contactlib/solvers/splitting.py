@@ -96,7 +96,10 @@ def fourier_multiplier(compliance, coupling=None) -> np.ndarray:
     On the modes that are their own mirror image (index 0 or Nyquist on every axis) the inverse real
     transform keeps only the real part of a spectrum, so there the operators act with ``Re M``: the
     multiplier says so, or the resolvent ``1 / (1 + gamma M)`` would be another operator's (a residual
-    floor near 1e-7 on a frictional 2D scene)."""
+    floor near 1e-7 on a frictional 2D scene). The rest of the Nyquist planes are made even where the kernels are
+    built (:mod:`contactlib.kernels.nyquist`): the last axis's Nyquist column holds the pairs ``(i, n/2)`` and
+    ``(-i, n/2)``, one mode and its conjugate, which a kernel taken at numpy's sign did not give conjugate values
+    (Douglas-Rachford stagnated at 2e-5 on a viscoelastic slide off the grid's axes)."""
     count = float(np.prod(compliance.work_shape))
     total = compliance.multiplier.astype(complex) * count
     if coupling is not None:

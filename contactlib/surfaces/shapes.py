@@ -10,7 +10,7 @@ import xarray as xr
 
 from .._version import __version__
 from ..grid import Grid
-from ..inputs import check_whole
+from ..inputs import check_whole, number, real_values
 from ..labels import attrs_for
 
 
@@ -23,21 +23,31 @@ def _as_dataarray(values, grid: Grid, length_unit: str, **attrs) -> xr.DataArray
 
 
 def _grid(n, length, dim) -> Grid:
-    if dim not in (1, 2):
+    if isinstance(dim, bool) or dim not in (1, 2):
         raise ValueError(f"dim must be 1 or 2, got {dim!r}")
-    check_whole(n, "n", 2)
-    if not (isinstance(length, numbers.Real) and math.isfinite(length) and length > 0):
-        raise ValueError(f"length must be finite and > 0, got {length!r}")
-    return Grid((int(n),) * dim, (float(length),) * dim)
+    n = check_whole(n, "n", 2)
+    return Grid((n,) * dim, (number("length", length, lower=0.0, lower_open=True),) * dim)
+
+
+def _per_asperity(name: str, value, k: int) -> np.ndarray:
+    """One finite value [length] per asperity from one number or ``k`` of them, refused by ``name``."""
+    values = real_values(value, name)
+    try:
+        values = np.broadcast_to(values, (k,))
+    except ValueError:
+        raise ValueError(f"{name} must be one value or one per asperity ({k}), got shape {values.shape}") from None
+    if not np.all(np.isfinite(values)):
+        raise ValueError(f"{name} must be finite, got {value!r}")
+    return values
 
 
 def wavy(n: int, *, length: float = 1.0, amplitude: float, wavelengths: int = 1, dim: int = 1,
          length_unit: str = "m") -> xr.DataArray:
     """``amplitude cos(q x)`` (1D) or the egg-box ``amplitude cos(q x) cos(q y)`` (2D), with
     ``q = 2 pi wavelengths / length``; a crest sits at the origin."""
-    if not (isinstance(amplitude, numbers.Real) and math.isfinite(amplitude) and amplitude > 0):
-        raise ValueError(f"amplitude must be finite and > 0, got {amplitude!r}")
+    amplitude = number("amplitude", amplitude, lower=0.0, lower_open=True)
     grid = _grid(n, length, dim)
+    length = grid.lengths[0]
     # a whole number of waves, resolved: the window stays periodic and the wave is not aliased
     if isinstance(wavelengths, bool) or not isinstance(wavelengths, numbers.Real) or not math.isfinite(wavelengths) \
             or int(wavelengths) != wavelengths \
@@ -54,23 +64,29 @@ def wavy(n: int, *, length: float = 1.0, amplitude: float, wavelengths: int = 1,
 
 def paraboloid(n: int, *, length: float = 1.0, radius: float, dim: int = 2, length_unit: str = "m") -> xr.DataArray:
     """Sphere (2D) or cylinder (1D) tip ``-r^2 / (2 radius)`` centred in the window, apex at 0."""
-    if not radius > 0:
-        raise ValueError(f"radius must be > 0, got {radius!r}")
+    radius = number("radius", radius, lower=0.0, lower_open=True)
     grid = _grid(n, length, dim)
+    length = grid.lengths[0]
     xs = [c - length / 2 for c in grid.coordinates()]
     r2 = xs[0] ** 2 if dim == 1 else xs[0][:, None] ** 2 + xs[1][None, :] ** 2
     return _as_dataarray(-r2 / (2 * radius), grid, length_unit, generator="contactlib.surfaces.paraboloid",
                          radius=radius)
 
 
-def spheres(n: int, *, length: float = 1.0, radius, summit_height=0.0, centers=None, count: int | None = None,
+SUMMIT_FRACTION = 0.1
+"""Default summit height of :func:`spheres`, as a fraction of each asperity's radius: a cap a tenth of its sphere's
+radius high, whose footprint on the base has a radius of 0.44 of the sphere's."""
+
+
+def spheres(n: int, *, length: float = 1.0, radius, summit_height=None, centers=None, count: int | None = None,
             lattice: int | None = None, height_std: float = 0.0, seed: int = 0, dim: int = 2,
             length_unit: str = "m") -> xr.DataArray:
     """Periodic field of spherical asperities on a flat base.
 
     Either a square ``lattice`` of ``lattice x lattice`` asperities, ``count`` asperities at
     uniformly random positions, or explicit ``centers`` (array ``(k, dim)`` [length]).
-    Summit heights are ``summit_height`` plus Gaussian scatter of std ``height_std``;
+    Summit heights [length] are ``summit_height`` (one value or one per asperity; default None:
+    :data:`SUMMIT_FRACTION` of each asperity's radius) plus Gaussian scatter of std ``height_std``;
     ``radius`` may be one value or one per asperity. Each cap is the exact sphere
     ``z_k - R_k + sqrt(R_k^2 - r^2)`` (nearest periodic image), truncated at the base 0.
 
@@ -78,37 +94,38 @@ def spheres(n: int, *, length: float = 1.0, radius, summit_height=0.0, centers=N
     asperity): ``asperity_center_x``, ``asperity_center_y`` [length] (2D only), ``asperity_radius``
     [length] and ``asperity_summit_height`` [length], so the same object feeds :func:`contactlib.solve`
     and :func:`contactlib.two_scale.solve`.
+
+    Raises
+    ------
+    ValueError
+        Naming the parameter: a wrong type or shape, a value out of range, no asperity above the base, or a
+        summit above its sphere's radius.
     """
     grid = _grid(n, length, dim)
+    length = grid.lengths[0]
     rng = np.random.default_rng(seed)
     if sum(v is not None for v in (centers, count, lattice)) != 1:
         raise ValueError("give exactly one of centers, count or lattice")
     for name, value in (("lattice", lattice), ("count", count)):
         if value is not None:
             check_whole(value, name)
-    for name, value in (("summit_height", summit_height), ("height_std", height_std)):
-        if not np.all(np.isfinite(np.asarray(value, dtype=float))):
-            raise ValueError(f"{name} must be finite, got {value!r}")
-    if height_std < 0:
-        raise ValueError(f"height_std must be >= 0, got {height_std!r}")
+    height_std = number("height_std", height_std, lower=0.0)
     if lattice is not None:
         pos = (np.arange(lattice) + 0.5) * length / lattice
         mesh = np.meshgrid(*([pos] * dim), indexing="ij")
         centers = np.stack([m.ravel() for m in mesh], axis=1)
     elif count is not None:
         centers = rng.uniform(0, length, size=(int(count), dim))
-    centers = np.atleast_2d(np.asarray(centers, dtype=float))
+    centers = np.atleast_2d(real_values(centers, "centers"))
     if centers.ndim != 2 or centers.shape[1] != dim or not np.all(np.isfinite(centers)):
         raise ValueError(f"centers must be finite, one row of {dim} coordinate(s) per asperity, got shape "
                          f"{centers.shape}")
     k = centers.shape[0]
-    try:
-        radii = np.broadcast_to(np.asarray(radius, dtype=float), (k,))
-    except ValueError:
-        raise ValueError(f"radius must be one value or one per asperity ({k}), got {np.shape(radius)}") from None
-    if not np.all(np.isfinite(radii) & (radii > 0)):
+    radii = _per_asperity("radius", radius, k)
+    if not np.all(radii > 0):
         raise ValueError("radius must be finite and > 0")
-    tops = summit_height + height_std * rng.standard_normal(k)
+    summits = SUMMIT_FRACTION * radii if summit_height is None else _per_asperity("summit_height", summit_height, k)
+    tops = summits + height_std * rng.standard_normal(k)
     if not np.any(tops > 0):
         raise ValueError(f"summit_height: no asperity rises above the base (summits {np.max(tops):.4g} at the "
                          "highest); the surface would be flat")

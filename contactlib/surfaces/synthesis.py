@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import math
 
 import numpy as np
 import xarray as xr
@@ -11,7 +10,7 @@ from .. import fft
 from .._version import __version__
 from ..analysis import statistics
 from ..grid import Grid
-from ..inputs import check_whole
+from ..inputs import check_whole, number
 from ..labels import attrs_for
 from .spectra import self_affine_psd, stretched_wavenumber
 
@@ -64,27 +63,25 @@ def self_affine(
     xarray.DataArray ``height`` with dims ``("x", "y")`` or ``("x",)``.
     """
     n = check_whole(n, "n", 2)
-    if dim not in (1, 2):
+    if isinstance(dim, bool) or dim not in (1, 2):
         raise ValueError(f"dim must be 1 or 2, got {dim!r}")
-    if not (0 < hurst <= 1):
-        raise ValueError(f"hurst must lie in (0, 1], got {hurst!r}")
-    if not (0 < q_low <= q_roll <= q_cutoff):
+    hurst = number("hurst", hurst, lower=0.0, upper=1.0, lower_open=True)
+    q_low = number("q_low", q_low, lower=0.0, lower_open=True)
+    q_roll = number("q_roll", q_roll, lower=0.0, lower_open=True)
+    q_cutoff = number("q_cutoff", q_cutoff, lower=0.0, lower_open=True)
+    if not (q_low <= q_roll <= q_cutoff):
         raise ValueError(f"need 0 < q_low <= q_roll <= q_cutoff, got {q_low}, {q_roll}, {q_cutoff}")
     if q_cutoff > n / 2:
         raise ValueError(f"q_cutoff={q_cutoff} exceeds the Nyquist wavenumber n/2={n / 2}")
     if (rms_height is None) == (rms_slope is None):
         raise ValueError("give exactly one of rms_height or rms_slope")
-    target = rms_height if rms_height is not None else rms_slope
-    if not (math.isfinite(target) and target > 0):
-        raise ValueError(f"{'rms_height' if rms_height is not None else 'rms_slope'} must be > 0, got {target!r}")
-    if not (0 < anisotropy <= 1):
-        raise ValueError(f"anisotropy must lie in (0, 1], got {anisotropy!r}")
+    target = number("rms_height" if rms_height is not None else "rms_slope",
+                    rms_height if rms_height is not None else rms_slope, lower=0.0, lower_open=True)
+    anisotropy = number("anisotropy", anisotropy, lower=0.0, upper=1.0, lower_open=True)
     if synthesis not in ("filtered-noise", "random-phase"):
         raise ValueError(f"synthesis must be 'filtered-noise' or 'random-phase', got {synthesis!r}")
-    if not math.isfinite(angle):
-        raise ValueError(f"angle must be a finite angle [rad], got {angle!r}")
-    if not (math.isfinite(length) and length > 0):
-        raise ValueError(f"length must be finite and > 0, got {length!r}")
+    angle = number("angle (principal direction [rad])", angle)
+    length = number("length", length, lower=0.0, lower_open=True)
     if dim == 1 and (anisotropy != 1 or angle != 0):
         raise ValueError("anisotropy and angle need dim=2")
 

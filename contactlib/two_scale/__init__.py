@@ -18,10 +18,12 @@ import xarray as xr
 from .. import surfaces
 from .._version import __version__
 from ..contact import ConvergenceError
-from ..inputs import check_iterations, check_tolerance, check_whole
+from ..invariants import verify_two_scale
+from ..inputs import check_iterations, check_tolerance, check_whole, number
 from ..labels import attrs_for, dataset
 from ..materials import contact_modulus
 from ..operators import Compliance
+from ..resolution import guard_asperities
 from .asperities import AsperityTable, asperity_forces, asperity_table
 from .fields import random_asperity_field
 from .interaction import ACCURACY, PointInteraction
@@ -204,7 +206,9 @@ def solve(
     ------
     ValueError
         Bad input, naming the parameter (see :func:`.asperity_table`), or a load beyond what separate
-        spherical contacts carry (a contact reaching its footprint's edge, the body reaching the base).
+        spherical contacts carry (a cap pressed down to its base, the body reaching the base plane): under
+        load control the message names the largest mean pressure the separate caps carry on the field, and
+        where they stop (found by bisecting displacement-controlled macro solves, only on refusal).
     ConvergenceError
         When the Newton iteration or the outer iteration does not reach its tolerance; it holds the
         residual and the partial Dataset.
@@ -223,10 +227,10 @@ def solve(
         raise ValueError(f"scale must be one of {SCALES}, got {scale!r}")
     if (mean_pressure is None) == (penetration is None):
         raise ValueError("give exactly one of mean_pressure or penetration")
-    if mean_pressure is not None and not (math.isfinite(mean_pressure) and mean_pressure >= 0):
-        raise ValueError(f"mean_pressure must be finite and >= 0, got {mean_pressure!r}")
-    if penetration is not None and not math.isfinite(penetration):
-        raise ValueError(f"penetration must be finite, got {penetration!r}")
+    if mean_pressure is not None:
+        mean_pressure = number("mean_pressure", mean_pressure, lower=0.0)
+    if penetration is not None:
+        penetration = number("penetration", penetration)
     if macro_tol is None:
         outer = force_tol if force_tol is not None else tol
         valid = isinstance(outer, numbers.Real) and math.isfinite(outer) and outer > 0  # else refused below
@@ -255,8 +259,14 @@ def solve(
     interaction = PointInteraction(table, E_star, accuracy=accuracy)
     law = HertzLaw(table.radius, E_star) if law is None else law
     correction = FiniteSize(table, E_star) if finite_size and isinstance(law, HertzLaw) else None  # Hertz's pressure
-    macro = solve_macro(table, interaction, law, penetration=penetration, total_force=total_force, z_top=z_top,
-                        tol=macro_tol, max_iter=int(max_iter), finite_size=correction)
+    try:
+        macro = solve_macro(table, interaction, law, penetration=penetration, total_force=total_force, z_top=z_top,
+                            tol=macro_tol, max_iter=int(max_iter), finite_size=correction)
+    except ValueError as err:  # Newton lost every contact: the load presses the body past the separate caps
+        if total_force is None or "no asperity in contact" not in str(err):
+            raise
+        limit = _separate_caps_limit(table, interaction, law, correction, z_top, macro_tol, int(max_iter))
+        raise ValueError(_beyond_separate_caps(mean_pressure, *limit)) from None
     macro_wall = time.perf_counter() - start
     params = {"scale": scale, "E": float(E), "nu": float(nu), "E_star": E_star, "periodic": int(table.periodic),
               "load_control": "mean_pressure" if mean_pressure is not None else "penetration", "tol": tol,
@@ -278,7 +288,13 @@ def solve(
         ds.attrs["convergence_message"] = (f"two_scale macro step: Newton did not converge in {macro.iterations} "
                                            f"iterations: residual {macro.residual:.3e} > macro_tol {macro_tol:.1e}{why}")
         raise ConvergenceError(ds.attrs["convergence_message"], residual=macro.residual, dataset=ds)
-    _check_separate_contacts(table, law, macro, z_top)
+    try:
+        _check_separate_contacts(table, law, macro, z_top)
+    except ValueError:
+        if total_force is None:
+            raise
+        limit = _separate_caps_limit(table, interaction, law, correction, z_top, macro_tol, int(max_iter))
+        raise ValueError(_beyond_separate_caps(mean_pressure, *limit)) from None
     if isinstance(law, TabulatedLaw) and np.any(macro.local_penetration > law.max_penetration):
         raise ValueError(f"law: the local penetration {float(macro.local_penetration.max()):.4g} exceeds the "
                          f"table's max_penetration {law.max_penetration:.4g}: tabulate further")
@@ -303,7 +319,53 @@ def solve(
         ds.attrs["converged"] = 0
         ds.attrs["convergence_message"] = message
         raise ConvergenceError(message, residual=micro.change if force_tol is None else micro.force_change, dataset=ds)
+    verify_two_scale(ds, table.heights, scale=scale, tol=tol if force_tol is None else force_tol, macro_tol=macro_tol,
+                     mean_pressure=mean_pressure, penetration=penetration)
+    if micro is not None:  # the macro step is Hertz's law itself: only the micro solves have a grid to resolve
+        guard_asperities(ds, ds["contact_radius"].values, min(table.grid.spacing), max(table.grid.shape))
     return ds
+
+
+LIMIT_RTOL = 1e-3
+"""The approach at which separate caps end, found to this fraction of the highest point's height (a refusal's
+bisection: about 10 displacement-controlled macro solves)."""
+
+
+def _separate_caps_limit(table: AsperityTable, interaction, law, correction, z_top: float, macro_tol: float,
+                         max_iter: int) -> tuple[float, float, str]:
+    """``(mean_pressure, approach, why)``: the largest mean pressure [pressure] that separate spherical caps carry on
+    this field, the approach [length] where it is reached, and what breaks just beyond it (a cap pressed to its
+    base, or the body on the base plane): displacement-controlled macro solves bisected on the approach between
+    first contact and the base plane (where the body always meets the base), to :data:`LIMIT_RTOL` of ``z_top``."""
+    def broken(delta):
+        state = solve_macro(table, interaction, law, penetration=delta, z_top=z_top, tol=macro_tol, max_iter=max_iter,
+                            finite_size=correction)
+        try:
+            _check_separate_contacts(table, law, state, z_top)
+        except ValueError as err:
+            message = str(err)  # without its "mean_pressure/penetration: ... carry:" preamble
+            return message.split("carry: ", 1)[-1] if "carry: " in message else message.split(": ", 1)[-1], state
+        return ("" if state.converged else "the macro Newton iteration does not converge"), state
+
+    lo, hi = 0.0, z_top
+    why, _ = broken(hi)
+    carried = 0.0
+    while hi - lo > LIMIT_RTOL * z_top:
+        mid = 0.5 * (lo + hi)
+        reason, state = broken(mid)
+        if reason:
+            hi, why = mid, reason
+        else:
+            lo, carried = mid, float(np.sum(state.force))
+    return carried / table.length**2, lo, why
+
+
+def _beyond_separate_caps(mean_pressure: float, limit: float, approach: float, why: str) -> str:
+    """The refusal of a load beyond :func:`_separate_caps_limit`'s: where the assumption breaks, and at what load."""
+    return (f"mean_pressure {mean_pressure!r} is beyond what separate spherical caps carry on this field: they carry "
+            f"at most a mean pressure of about {limit:.4g} (approach {approach:.4g}); just beyond it {why}. The "
+            f"two-scale method assumes separate contacts: ask for less than {limit:.4g}, or solve the heights with "
+            "contactlib.solve")
 
 
 def _check_separate_contacts(table: AsperityTable, law: HertzLaw, macro: MacroState, z_top: float) -> None:

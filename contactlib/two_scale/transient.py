@@ -40,6 +40,7 @@ import xarray as xr
 
 from .._version import __version__
 from ..contact import ConvergenceError
+from ..invariants import verify_two_scale_series
 from ..hereditary import PronyHistory
 from ..inputs import check_iterations, check_tolerance
 from ..labels import attrs_for
@@ -179,6 +180,8 @@ def solve_transient(
                             status=f"not converged at step {record.done} (t = {times[record.done]:g}): {err}")
         raise ConvergenceError(ds.attrs["status"], residual=err.residual, dataset=ds) from err
     ds = record.dataset(stepper, start, (length_unit, pressure_unit, time_unit), status="completed")
+    verify_two_scale_series(ds, loads, control=control, scale=scale, tol=tol if force_tol is None else force_tol,
+                            macro_tol=stepper.macro_tol)
     if stepper.receding:
         ds.attrs["receding_contacts"] = stepper.receding
         warnings.warn(f"two_scale.solve_transient: {stepper.receding}", stacklevel=2)
