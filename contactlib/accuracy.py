@@ -232,13 +232,14 @@ def grid_points_per_wavelength(heights, *, length=None, floor: float = 1e-10) ->
     if length is None and isinstance(heights, xr.DataArray):
         length = [float(heights[d][1] - heights[d][0]) * heights.sizes[d] for d in heights.dims]
     lengths = np.broadcast_to(np.asarray(1.0 if length is None else length, dtype=float), (values.ndim,))
-    # the solves' own planned FFTW and work buffers (no new memory; pocketfft took 3x longer at 1024^2): this runs
-    # before or after a solve, never inside one
-    plan = fft.get_fft(values.shape)
+    # a planned FFTW of its own (pocketfft took 3x longer at 1024^2), dropped after use: sharing the solver's work plan
+    # changed the round-off of concurrent threaded solves, and a cached one would hold a grid's memory between solves
+    plan = fft.get_fft(values.shape, slot="resolution")
     plan.real[...] = values
     spectrum = plan.forward()
     power = np.square(spectrum.real)
     power += np.square(spectrum.imag)
+    fft.release_fft(values.shape, "resolution")
     power.flat[0] = 0.0  # the mean
     top = power.max()
     if top == 0:

@@ -43,7 +43,7 @@ from . import adhesive_contact
 from ._version import __version__
 from .adhesion import Adhesion
 from .contact import _setup, periodic_of
-from .invariants import verify_path
+from .invariants import adhesive_state_holds, verify_path
 from .inputs import check_below_full_contact, real_values
 from .labels import attrs_for
 from .materials import material_of
@@ -151,7 +151,9 @@ def _cohesive_step(setup, adhesion, args, warm, warm_d):
                                              else None)
         except (ValueError, np.linalg.LinAlgError, FloatingPointError):
             continue
-        if candidate.converged:
+        if candidate.converged and adhesive_state_holds(candidate, setup.values, adhesion, tol=args["tol"],
+                                                        mean_pressure=args["mean_pressure"],
+                                                        penetration=args["penetration"]):
             return candidate, closest
         closest = float(np.fmin(closest, candidate.residual))
     return None, closest

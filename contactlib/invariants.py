@@ -452,7 +452,8 @@ def verify_path(ds, path: np.ndarray, heights: np.ndarray, adhesion, *, load_con
     error = np.abs(returned - asked) / scale
     claimed = ds["converged"].values == 1
     bad = claimed & ~(error <= _floor(tol))
-    ds.attrs["invariants_checked"] = f"{'load' if load_control else 'penetration'} (each state)"
+    ds.attrs["invariants_checked"] = f"{'load' if load_control else 'penetration'}" + (
+        ", gap, closed_gap, tension" if adhesion.cohesive else "") + " (each state)"
     if not bad.any():
         return
     steps = np.flatnonzero(bad)
@@ -471,6 +472,13 @@ def verify_path(ds, path: np.ndarray, heights: np.ndarray, adhesion, *, load_con
     ds.attrs.update(converged=0, convergence_message=message, invariant_failures=message)
 
 
+def adhesive_state_holds(state, heights: np.ndarray, adhesion, *, tol: float, mean_pressure: float | None,
+                         penetration: float | None) -> bool:
+    """Whether a converged adhesive state of a path meets :func:`adhesive_checks`: one that does not is taken for an
+    unconverged attempt (:func:`contactlib.adhesion_curve` tries its next start)."""
+    return all(c.passed for c in adhesive_checks(state, heights, adhesion, tol=tol, mean_pressure=mean_pressure,
+                                                 penetration=penetration))
+
 def _height_rms(heights: np.ndarray) -> float:
     s = float(np.sqrt(np.mean((heights - heights.mean()) ** 2)))
     return s if s > 0 else 1.0
@@ -483,13 +491,6 @@ def with_dataset(err: ConvergenceError, message: str, dataset) -> ConvergenceErr
         return InvariantError(message, invariant=err.invariant, violation=err.violation, bound=err.bound,
                               dataset=dataset)
     return ConvergenceError(message, residual=err.residual, dataset=dataset)
-
-
-__all__ = ["InvariantError", "Check", "verify", "contact_checks", "adhesive_checks", "sliding_checks",
-           "check_load", "check_penetration", "check_sign", "check_gap", "check_complementarity",
-           "check_gap_definition", "check_closed_gap", "check_tension", "check_energy_balance", "check_relaxed_limit",
-           "relaxed_hold", "verify_solve", "verify_two_scale", "verify_two_scale_series", "verify_path", "with_dataset",
-           "step_invariants"]
 
 
 def verify_solve(setup, state, ds) -> None:
@@ -507,3 +508,10 @@ def verify_solve(setup, state, ds) -> None:
         checks += sliding_checks(ds, setup.values, lengths=setup.grid.lengths, velocity=velocity,
                                  direction=setup.attrs["sliding_direction"], tol=tol)
     verify(checks, ds, where="solve")
+
+
+__all__ = ["InvariantError", "Check", "verify", "contact_checks", "adhesive_checks", "sliding_checks",
+           "check_load", "check_penetration", "check_sign", "check_gap", "check_complementarity",
+           "check_gap_definition", "check_closed_gap", "check_tension", "check_energy_balance", "check_relaxed_limit",
+           "relaxed_hold", "verify_solve", "verify_two_scale", "verify_two_scale_series", "verify_path",
+           "adhesive_state_holds", "with_dataset", "step_invariants"]

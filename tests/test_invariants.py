@@ -287,6 +287,31 @@ def test_adhesion_curve_withdraws_a_state_off_its_load():
         "invariant_failures"]
 
 
+def test_cohesive_path_takes_no_state_that_breaks_the_law(monkeypatch):
+    """A cohesive path checks each state's fields: a state pulled beyond the law at one point is not accepted from any
+    start, so the step is a failed one (converged 0, the path's scalars NaN), never a converged one."""
+    h = surfaces.paraboloid(32, length=1.0, radius=2.0)
+    law = contactlib.Adhesion(work=1e-4, range=2e-3, model="exponential")
+    kwargs = dict(E=1.0, nu=0.5, adhesion=law, periodic=False, penetrations=[0.0, 1e-3])
+    ds = contactlib.adhesion_curve(h, **kwargs)
+    assert ds.attrs["invariants_checked"] == "penetration, gap, closed_gap, tension (each state)"
+    assert ds.attrs["converged"] == 1 and ds.converged.values.tolist() == [1, 1, 1]
+    run = adhesive_contact.run
+
+    def corrupted(setup, adhesion, **kw):  # the deepest state: a point ten ranges open pulled at sigma_0
+        s = run(setup, adhesion, **kw)
+        if s.penetration < 0.9e-3:
+            return s
+        p = s.pressure.copy()
+        p.flat[int(np.argmin(np.where(s.gap > 10 * adhesion.range, s.gap, np.inf)))] = -adhesion.peak_stress
+        return dataclasses.replace(s, pressure=p)
+
+    monkeypatch.setattr(adhesive_contact, "run", corrupted)
+    ds = contactlib.adhesion_curve(h, **kwargs)
+    assert ds.converged.values.tolist() == [1, 0, 1] and ds.attrs["converged"] == 0
+    assert np.isnan(float(ds.pull_off_pressure))
+
+
 def test_two_scale_answers_are_checked():
     h = surfaces.spheres(128, radius=0.5, lattice=2, summit_height=0.01, height_std=0.001)
     ds = contactlib.two_scale.solve(h, E=1.0, nu=0.5, mean_pressure=1e-4)

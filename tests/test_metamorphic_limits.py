@@ -17,6 +17,7 @@ import contactlib.two_scale as ts
 from contactlib import resolution, surfaces
 from contactlib.analysis import statistics
 from contactlib.kernels.layer import zero_mode_compliance
+from contactlib.kernels.tensor import surface_green_tensor
 from contactlib.reference import hertz
 
 pytestmark = [pytest.mark.filterwarnings(f"ignore::{contactlib.ResolutionWarning.__module__}.ResolutionWarning"),
@@ -55,19 +56,23 @@ ADHESION_RTOL = 1e3 * ADHESION_TOL
 def spheres_to_adhere(draw):
     """A sphere (2D) or cylinder (1D) pressed into a non-periodic half-space, contact 8-30 % of the window."""
     dim = draw(st.sampled_from([1, 2]))
-    n = draw(st.integers(64, 256) if dim == 1 else st.integers(24, 48))
+    # even n: the energy method takes a surface symmetric about its highest point, which paraboloid's cell-centred
+    # nodes give only on an even grid
+    n = 2 * draw(st.integers(32, 128) if dim == 1 else st.integers(20, 32))
     length = 10 ** draw(st.floats(-4, 0))
     radius = length * 10 ** draw(st.floats(0, 1.5))
     E = 10 ** draw(st.floats(-2, 9))
-    a = draw(st.floats(0.08, 0.3)) * length / 2
+    spacings = draw(st.floats(5.0, 0.15 * n))  # contact radius in grid spacings, at most 0.3 of the half-window
+    a = spacings * length / n
     heights = surfaces.paraboloid(n, length=length, radius=radius, dim=dim)
-    return Scene((heights, dict(E=E, nu=0.5, periodic=False), a**2 / radius, radius),
-                 f"paraboloid(n={n}, length={length:.3g}, radius={radius:.3g}, dim={dim}) E={E:.3g} a/L={a / length:.3f}")
+    return Scene((heights, dict(E=E, nu=0.5, periodic=False), a**2 / radius, radius, spacings),
+                 f"paraboloid(n={n}, length={length:.3g}, radius={radius:.3g}, dim={dim}) E={E:.3g} "
+                 f"a={spacings:.3g} spacings")
 
 
 def vanishing(draw, scene, model):
     """An Adhesion whose largest traction is 1e-12 to 1e-9 of E* (of the Hertz peak, 1e-10 to 1e-8 or so)."""
-    heights, kw, depth, radius = scene
+    heights, kw, depth, radius, _ = scene
     E_star = kw["E"] / (1 - kw["nu"] ** 2)
     stress = 10 ** draw(st.floats(-12, -9)) * E_star
     if model == "jkr":
@@ -81,18 +86,22 @@ def vanishing(draw, scene, model):
        control=st.sampled_from(["penetration", "mean_pressure"]), data=st.data())
 def test_vanishing_work_of_adhesion_is_no_adhesion(scene, model, control, data):
     """w -> 0: the adhesive solve is the plain one, under either control, for the cohesive laws and the energy
-    method (whose ``work`` may be 0)."""
-    heights, kw, depth, radius = scene
+    method (whose ``work`` may be 0). The energy method's contact is a disc (or interval) of whole spacings, a
+    discretisation of its own: it may differ from the plain solve by the measured resolution rule at the contact's
+    radius (:func:`contactlib.resolution.predicted_error`)."""
+    heights, kw, depth, radius, spacings = scene
     adhesion, stress = vanishing(data.draw, scene, model)
     note(f"{adhesion}")
     plain = contactlib.solve(heights, penetration=depth, tol=1e-10, **kw)
     asked = dict(penetration=depth) if control == "penetration" else dict(mean_pressure=float(plain.mean_pressure))
     sticky = contactlib.solve(heights, adhesion=adhesion, tol=ADHESION_TOL, **asked, **kw)
     peak = float(plain.pressure.max())
+    grid_error = resolution.predicted_error("points_per_contact_radius", spacings) if model == "jkr" else 0.0
+    bound = ADHESION_RTOL + 10 * stress / peak + grid_error
     error = float(np.abs(sticky.pressure.values - plain.pressure.values).max()) / peak
-    assert error <= ADHESION_RTOL + 10 * stress / peak, f"pressure {error:.2e} of the peak off the plain solve"
-    assert float(sticky.mean_pressure) == pytest.approx(float(plain.mean_pressure), rel=ADHESION_RTOL)
-    assert float(sticky.penetration) == pytest.approx(depth, rel=ADHESION_RTOL)
+    assert error <= bound, f"pressure {error:.2e} of the peak off the plain solve (bound {bound:.2e})"
+    assert float(sticky.mean_pressure) == pytest.approx(float(plain.mean_pressure), rel=bound)
+    assert float(sticky.penetration) == pytest.approx(depth, rel=bound)
 
 
 @settings(max_examples=budget(8), **FAST)
@@ -101,14 +110,17 @@ def test_vanishing_work_of_adhesion_is_no_adhesion(scene, model, control, data):
 def test_vanishing_work_adhesion_curve_is_the_plain_path(scene, model, data):
     """w -> 0: a loading-unloading path retraces the plain solves without hysteresis, and its pull-off (at most
     2 pi w R, DMT's, over the window) vanishes with w."""
-    heights, kw, depth, radius = scene
+    heights, kw, depth, radius, spacings = scene
     adhesion, stress = vanishing(data.draw, scene, model)
     note(f"{adhesion}")
     depths = depth * np.array([0.25, 0.5, 1.0])
     path = contactlib.adhesion_curve(heights, adhesion=adhesion, penetrations=depths, tol=ADHESION_TOL, **kw)
     plain = [float(contactlib.solve(heights, penetration=d, tol=1e-10, **kw).mean_pressure) for d in depths]
     expected = np.concatenate([plain, plain[-2::-1]])
-    np.testing.assert_allclose(path.mean_pressure.values, expected, rtol=ADHESION_RTOL)
+    grid_error = resolution.predicted_error("points_per_contact_radius", spacings / 2) if model == "jkr" else 0.0
+    # the vanishing law's traction, at most w / range, moves the mean pressure by at most that over the least load
+    traction = 10 * stress / plain[0]
+    np.testing.assert_allclose(path.mean_pressure.values, expected, rtol=ADHESION_RTOL + grid_error + traction)
     length = float(heights.x[-1] - heights.x[0]) * heights.shape[0] / (heights.shape[0] - 1)
     pull_off = float(path.pull_off_pressure)
     bound = 2 * math.pi * adhesion.work * radius / length**2 + ADHESION_RTOL * plain[0]
@@ -155,8 +167,9 @@ def test_full_contact_on_a_confined_layer_relaxes_and_creeps_in_closed_form(mate
     stepping rule is exact at fixed displacement, so these match to the step tolerance times the grid's stiffness
     spread, 1e3 STEP_TOL. The mean mode carries ``p`` and creeps as the SLS closed form:
     ``penetration(t) - penetration(0) = p C0 (J(t) - J(0))``, ``C0`` the layer's uniaxial compliance at unit
-    modulus. The rule is second order in ``dt``. Its error is bounded by ``(dt_max / tau_creep)^2 / 2`` of the
-    creep (measured: 0.13 (dt / tau_creep)^2 at even steps)."""
+    modulus. The rule is second order in ``dt``; its error, relative to the creep, scales as
+    ``(E_inf / E0) (dt / tau_creep)^2`` (measured 0.026 times it at E_inf/E0 = 5 and 0.030 at 100, even steps),
+    so the bound is 0.1 times it at the longest step."""
     (h,) = surface
     nu = material.nu
     tau = material.prony[0][1]
@@ -164,16 +177,17 @@ def test_full_contact_on_a_confined_layer_relaxes_and_creeps_in_closed_form(mate
     steps = data.draw(st.integers(15, 40), label="steps")
     times = data.draw(step_times(creep_time, data.draw(st.floats(0.5, 4.0), label="span"), steps), label="times")
     thickness = data.draw(st.floats(0.02, 0.3), label="thickness")
-    # far beyond full contact: the relaxed modulus needs (E0 / (1 - nu^2)) q_max ptp(h) / 2 to flatten the profile
-    pm = 10 * material.E_inf / (1 - nu**2) * float(np.ptp(h.values)) * math.pi * h.shape[0]
+    grid = contactlib.Grid(h.shape, (1.0,))
+    unit = surface_green_tensor(grid, 1.0, nu, thickness, "confined").normal  # displacement per pressure, E = 1
+    hq = np.fft.rfft(h.values)
+    nonzero = grid.wavenumber() > 0
+    # twice the load that flattens the profile at the glassy modulus: E(t) <= E_inf keeps it in full contact
+    flattening = hq * 0
+    flattening[nonzero] = hq[nonzero] / unit[nonzero]
+    pm = 2 * material.E_inf * float(-np.fft.irfft(flattening, h.shape[0]).min())
     out = contactlib.solve_transient(h, material=material, times=times, mean_pressure=pm, tol=STEP_TOL,
                                      layer=contactlib.Layer(thickness), save_fields=True)
     assert float(out.contact_area.min()) == 1.0
-    grid = contactlib.Grid(h.shape, (1.0,))
-    from contactlib.kernels.tensor import surface_green_tensor
-    unit = surface_green_tensor(grid, 1.0, nu, thickness, "confined").normal
-    hq = np.fft.rfft(h.values)
-    nonzero = grid.wavenumber() > 0
     for k, t in enumerate(out.saved_time.values):
         pq = np.fft.rfft(out.pressure.isel(saved_time=k).values)
         exact = hq[nonzero] * material.relaxation(t) / unit[nonzero]
@@ -182,7 +196,7 @@ def test_full_contact_on_a_confined_layer_relaxes_and_creeps_in_closed_form(mate
     C0 = zero_mode_compliance(thickness, 1.0, nu, "confined")["normal"]
     creep = pm * C0 * (material.creep(times) - material.creep(0.0))
     got = out.penetration.values - out.penetration.values[0]
-    bound = (float(np.diff(times).max()) / creep_time) ** 2 / 2
+    bound = 0.1 * material.E_inf / material.E0 * (float(np.diff(times).max()) / creep_time) ** 2
     error = float(np.abs(got - creep).max() / np.abs(creep).max())
     note(f"creep error {error:.2e}, bound {bound:.2e}")
     assert error <= bound + 1e3 * STEP_TOL

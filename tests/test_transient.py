@@ -142,8 +142,13 @@ def test_sliding_from_rest_reaches_the_steady_sliding_solution():
     pressure = np.roll(out.pressure.isel(saved_time=-1).values, -shift)
     reference = steady.pressure.values
     assert np.linalg.norm(pressure - reference) / np.linalg.norm(reference) < 0.01
+    # the same estimator on both states (the transient's, from the rigid slopes: the indenter's work per slide);
+    # the steady solver reports the deformed surface's, the operator's own dissipation, 2.3 % above it at 8 points
+    # per shortest wavelength
     mu = float(out.friction_coefficient_interlocking[-1])
-    assert mu == pytest.approx(float(steady.friction_coefficient_interlocking), rel=0.01)
+    steady_mu = contactlib.analysis.interlocking_friction(steady.pressure.values, h.values, lengths=1.0)
+    assert mu == pytest.approx(steady_mu, rel=0.01)
+    assert float(steady.friction_coefficient_interlocking) == pytest.approx(mu, rel=0.03)
     assert float(out.dissipated_power[-1]) == pytest.approx(float(steady.dissipated_power), rel=0.01)
     assert float(out.contact_area[0]) > 2 * float(out.contact_area[-1])  # it started relaxed, far from it
 

@@ -12,7 +12,13 @@ mirror maps onto itself is the mean over the two signs, :func:`even_on_nyquist`:
 :func:`contactlib.analysis.directional_slope` zeroes the derivative), an even part unchanged. In 1D the Nyquist
 mode is its own conjugate, so the inverse real transform already dropped the imaginary (odd) part; in 2D the
 Nyquist row of the ``fftfreq`` axis and column of the ``rfftfreq`` one carry modes that are not, and that is where
-the mirror broke. Odd lengths have no Nyquist mode: nothing changes.
+the mirror broke. The last axis's Nyquist column holds ``(i, n/2)`` and ``(-i, n/2)``, one mode and its conjugate:
+made even, the kernel gives them conjugate values, as a real operator must (taken at numpy's sign it did not, and
+Douglas-Rachford stagnated at 2e-5 on a viscoelastic slide off the grid's axes). Odd lengths have no Nyquist mode:
+nothing changes (the mirrors agreed there to round-off before).
+
+Measured (128^2, tol 1e-10; a confined layer h = 0.05, nu = 0.3, mu = 0.5, and a standard linear solid E_inf/E0 =
+10 at V tau = 0.05): both mirrors from 2.8e-4 of the peak pressure to 2e-15 and 7e-15.
 
 Kernels even in every component (every function of ``|q|``: the frictionless elastic and layer compliances) are
 the same either way and are not passed through here: the frictionless path is unchanged, bit for bit.
@@ -89,16 +95,17 @@ def wavevector_along(grid: Grid, vector) -> np.ndarray:
     return even_on_nyquist(grid, lambda *q: sum(qi * vi for qi, vi in zip(q, components)))
 
 
-def unit_projections(grid: Grid) -> dict[str, np.ndarray]:
+def unit_projections(grid: Grid, names=("x", "y", "xx", "yy", "xy")) -> dict[str, np.ndarray]:
     """The direction cosines of ``n = q/|q|`` and their products on the rfft layout, each even on the Nyquist
     planes (0 at ``q = 0``) [1].
 
-    1D: ``{"x": sgn q}``. 2D: ``{"x": n_x, "y": n_y, "xx": n_x^2, "yy": n_y^2, "xy": n_x n_y}``: the products
-    are made even themselves (``n_x n_y`` is odd in both components; ``n_x^2`` even, unchanged), not formed from
-    the made-even cosines (which would zero ``n_x^2`` on the Nyquist row).
+    1D: ``{"x": sgn q}``. 2D: those of ``names`` among ``{"x": n_x, "y": n_y, "xx": n_x^2, "yy": n_y^2, "xy": n_x
+    n_y}``: the products are made even themselves (``n_x n_y`` is odd in both components; ``n_x^2`` even,
+    unchanged), not formed from the made-even cosines (which would zero ``n_x^2`` on the Nyquist row). Formed on the
+    whole layout once, then rewritten on the Nyquist planes alone.
     """
     if grid.dim == 1:
-        return {"x": even_on_nyquist(grid, np.sign)}
+        return {"x": even_on_nyquist(grid, np.sign, np.sign(grid.wavevectors()[0]))}
 
     def cosines(qx, qy):
         k = np.sqrt(qx**2 + qy**2)
@@ -107,5 +114,10 @@ def unit_projections(grid: Grid) -> dict[str, np.ndarray]:
 
     products = {"x": lambda a, b: a, "y": lambda a, b: b, "xx": lambda a, b: a * a, "yy": lambda a, b: b * b,
                 "xy": lambda a, b: a * b}
-    return {name: even_on_nyquist(grid, lambda qx, qy, form=form: form(*cosines(qx, qy)))
-            for name, form in products.items()}
+    nx, ny = cosines(*grid.wavevectors())
+    out = {}
+    for name in names:
+        form = products[name]
+        whole = np.array(np.broadcast_to(form(nx, ny), grid.spectral_shape()))
+        out[name] = even_on_nyquist(grid, lambda qx, qy, form=form: form(*cosines(qx, qy)), whole)
+    return out

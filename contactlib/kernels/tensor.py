@@ -28,7 +28,7 @@ import numpy as np
 from ..grid import Grid
 from .elastic import _offsets
 from .layer import halfspace_factors, layer_factors, zero_mode_compliance
-from .nyquist import unit_projections
+from .nyquist import even_on_nyquist, unit_projections
 
 
 @dataclass(frozen=True)
@@ -51,12 +51,13 @@ class SurfaceGreenTensor:
         """``-i c (q . s)/|q|``: the normal displacement per unit tangential traction along
         ``s = (cos direction, sin direction)`` (1D: ``cos direction = +-1``, along ``+-x``) [length/pressure],
         complex. Odd in ``q``: its component along a Nyquist wavenumber is zero (:mod:`.nyquist`)."""
-        n = unit_projections(grid)
-        if grid.dim == 1:
-            along = n["x"] * np.cos(direction)
-        else:
-            along = n["x"] * np.cos(direction) + n["y"] * np.sin(direction)
-        return -1j * self.coupling * along
+        s = (np.cos(direction), np.sin(direction))[: grid.dim]
+
+        def along(*q):  # (q . s)/|q|, 0 at q = 0
+            k = np.abs(q[0]) if grid.dim == 1 else np.sqrt(q[0] ** 2 + q[1] ** 2)
+            return np.where(k > 0, sum(qi * si for qi, si in zip(q, s)) / np.where(k > 0, k, 1.0), 0.0)
+
+        return -1j * self.coupling * even_on_nyquist(grid, along, along(*grid.wavevectors()))
 
     def tangential_displacement(self, grid: Grid, pressure_spectrum: np.ndarray, traction_spectra) -> tuple:
         """In-plane surface displacement spectra ``(u_x,)`` (1D) or ``(u_x, u_y)`` (2D) due to a pressure

@@ -19,7 +19,9 @@ Two methods, tried in this order:
    (``benchmarks/bench_adhesion.py``). A cold start is the first
    round itself (``a = 0``). Where the fixed point converges slowly (its gain ``|a'| K`` over the
    process zone is near 1 on a single smooth contact with a resolved zone: the JKR sphere, a 1D wavy
-   profile), it stops after :data:`STALL_ROUNDS` rounds without a :data:`STALL_DROP` fall.
+   profile), it stops after :data:`STALL_ROUNDS` rounds without a :data:`STALL_DROP` fall, and starts again by
+   continuation in the range (:data:`FROZEN_RANGES`: a Maugis sphere at large lambda, whose contact edge then
+   creeps an element every few rounds, is reached from the same sphere at a smaller lambda).
 2. **Semi-smooth Newton** (primal-dual active set, :class:`.cohesive_newton.CohesiveNewton`): on the active
    set ``C = {p_r > c g}`` the row is ``g = 0`` (contact), elsewhere ``p = a(g)`` (the law), linearised
    with ``a'(g)``. Each Newton system goes to GMRES with the body's operator and, on the contact rows, the Fourier
@@ -30,7 +32,8 @@ Two methods, tried in this order:
    swings by thousands of points on a rough surface); when a solve stalls it is restarted by
    continuation in the range (:data:`RANGES`, from its own start), and if that stalls too, from the
    non-adhesive state by continuation in the work of adhesion (``w / 16`` first, doubled after each
-   converged stage, bisected back after a failed one: :func:`_continuation`).
+   converged stage, bisected back after a failed one: :func:`_continuation`). All Newton solves of one solve
+   share one bound on their GMRES iterations (:data:`NEWTON_WORK`), so that a failure comes back in seconds.
 
 A solve that does not meet ``tol`` comes back ``converged=False``. The residual is scale-free: the mean
 ``|phi| / c``, the interpenetration and the repulsive traction's weighted mean gap (``sum |p_r| |g| / sum |p_r|``,
@@ -55,12 +58,21 @@ import numpy as np
 from . import _cohesive_sweeps as sweeps
 from ..adhesion import MAUGIS_RAMP
 from .ccg import solve_polonsky_keer
-from .cohesive_newton import CohesiveNewton
+from .cohesive_newton import GMRES_ITERATIONS, CohesiveNewton
 from .cohesive_rounds import Rounds
 from .state import ContactState
 
 MAX_NEWTON = 60
 """Default bound on the Newton iterations of one solve (one range)."""
+
+NEWTON_WORK = 2**28
+"""Bound on the GMRES iterations of every Newton solve of one cohesive solve together (its continuations'
+included), times the points of the grid: a failing solve comes back in about half a minute of GMRES at 256^2 on a
+loaded 2-core machine (4096 iterations there; without it a Maugis sphere at lambda 5 raised after 246 s and 28,400
+GMRES iterations, at lambda 3.6 after 137 s and 14,500)."""
+
+NEWTON_KRYLOV_FLOOR = 4 * GMRES_ITERATIONS
+"""The least GMRES iterations that bound gives a solve, whatever its grid (four Newton steps' worth)."""
 
 RANGES = (8.0, 4.0, 2.0, 1.0)
 """Range multipliers of the first continuation a stalled solve restarts with (from its own start)."""
@@ -97,6 +109,21 @@ STALL_DROP = 0.25
 """The frozen-traction iteration counts as stalled when :data:`STALL_ROUNDS` rounds have not brought the residual
 below ``STALL_DROP`` times its best before them (on 2D rough scenes under load it falls 2-3x a round; where it
 falls 10 % a round, as on a 1D wavy profile with a 16-element process zone, Newton is faster)."""
+
+FROZEN_RANGES = (2.0, np.sqrt(2.0), 1.0)
+"""Range multipliers of the frozen-traction continuation a stalled frozen traction restarts with, before Newton
+(:func:`_frozen_continuation`). A non-periodic Maugis sphere at lambda 3.58 (256^2 over a quarter of its radius,
+3.4 elements across the process zone, the approach 0.002 R): the frozen traction stalled after 11 rounds and
+Newton then failed after 137 s (14,500 GMRES iterations); through this continuation it converges cold in 36, 6
+and 22 rounds, 4.3 s against 1.0 s for the non-adhesive solve (loaded 2-core machine), to residual 1.2e-7."""
+
+FROZEN_LOOSE_TOL = 1e-4
+"""The tolerance of the continuation's intermediate stages: only a start for the next."""
+
+FROZEN_STALL_ROUNDS = MAX_ROUNDS
+""":data:`STALL_ROUNDS` of the continuation's stages, whose only bound is :data:`MAX_ROUNDS`: there the contact edge
+moves an element every few rounds, with the residual flat between (a Maugis sphere at lambda 1.8, 4 elements
+across the zone at lambda 3.6: 42 rounds from 3e-2 to 1e-5, flat over 4-7 rounds at a time)."""
 
 FIRST_INNER_TOL = 1e-2
 INNER_FRACTION = 0.1
@@ -157,11 +184,17 @@ def solve_cohesive(
     if solve_repulsive is not None:  # cold: its first round is the non-adhesive solve, to a loose tolerance
         result = _FrozenTraction(operator, heights, adhesion, mean_pressure, penetration, tol,
                                  solve_repulsive)(p, delta)
+        if result is not None and not result[-1] and np.isfinite(result[6]):
+            result = _frozen_continuation(operator, heights, adhesion, mean_pressure, penetration, tol,
+                                          solve_repulsive, p, delta, result)
     method = "cohesive-frozen-traction"
     spent = [0, 0]  # Newton steps and GMRES iterations of every Newton solve: the failed ones' are reported too
 
-    def newton(law, p, delta):
-        solved = CohesiveNewton(operator, heights, law, mean_pressure, penetration, tol, max_iter)(p, delta)
+    krylov = max(NEWTON_WORK // heights.size, NEWTON_KRYLOV_FLOOR)
+
+    def newton(law, p, delta):  # every Newton solve draws on one bound of GMRES iterations
+        solved = CohesiveNewton(operator, heights, law, mean_pressure, penetration, tol, max_iter,
+                                krylov=krylov - spent[1])(p, delta)
         spent[0], spent[1] = spent[0] + solved[4], spent[1] + solved[5]
         return solved
 
@@ -189,6 +222,31 @@ def solve_cohesive(
                          converged=bool(converged), solver=f"{method} ({adhesion.model})",
                          outer_iterations=krylov)
     return state, p_r
+
+
+def _frozen_continuation(operator, heights, adhesion, mean_pressure, penetration, tol, solve_repulsive, p, delta,
+                         stalled):
+    """The frozen traction along the ranges :data:`FROZEN_RANGES` (times the law's), from ``(p, delta)``, each stage
+    warm-started from the last one's state, the intermediate ones to :data:`FROZEN_LOOSE_TOL` and every stage given
+    :data:`FROZEN_STALL_ROUNDS` before its stall check. A longer range is a smaller Maugis parameter (the same work,
+    a lower peak stress): a longer process zone, which the fixed point resolves in few rounds, and a start for the
+    next stage whose contact edge is already within an element or two of its place. Returns the last stage's
+    result (its ``iterations`` and rounds those of every stage), or ``stalled`` (the first attempt's) where a
+    stage unloads the contact or none gets closer than it."""
+    iterations, rounds, result = stalled[4], stalled[5], None
+    for factor in FROZEN_RANGES:
+        last = factor == FROZEN_RANGES[-1]
+        law = adhesion if last else dataclasses.replace(adhesion, range=adhesion.range * factor)
+        stage = _FrozenTraction(operator, heights, law, mean_pressure, penetration,
+                                tol if last else max(tol, FROZEN_LOOSE_TOL), solve_repulsive,
+                                stall_rounds=FROZEN_STALL_ROUNDS)(p, delta)
+        if stage is None or not np.isfinite(stage[6]):
+            return stalled
+        iterations, rounds = iterations + stage[4], rounds + stage[5]
+        p, delta, result = stage[0], stage[1], stage
+    if result is None or result[6] > stalled[6]:
+        return stalled
+    return (*result[:4], iterations, rounds, *result[6:])
 
 
 def _continuation(newton, adhesion, p, delta):
@@ -235,8 +293,10 @@ class _FrozenTraction:
     :data:`INNER_ITERATIONS` iterations. The residual is that of :class:`.cohesive_newton.CohesiveNewton` with the mean
     interpenetration, on the state ``(a + q, g)`` the inner solve returns."""
 
-    def __init__(self, operator, heights, adhesion, mean_pressure, penetration, tol, solve_repulsive):
+    def __init__(self, operator, heights, adhesion, mean_pressure, penetration, tol, solve_repulsive,
+                 stall_rounds=None):
         self.op, self.law, self.tol, self.solve = operator, adhesion, tol, solve_repulsive
+        self.stall_rounds = STALL_ROUNDS if stall_rounds is None else int(stall_rounds)
         self.heights, self.load, self.penetration = heights, mean_pressure, penetration
         self.measure = CohesiveNewton(operator, heights, adhesion, mean_pressure, penetration, tol, 1)
         # the primal solver keeps its progress from a warm start, so a few iterations a round suffice; the dual
@@ -279,7 +339,8 @@ class _FrozenTraction:
             return False
         history = self.history
         history.append(residual)
-        if len(history) > STALL_ROUNDS and min(history[-STALL_ROUNDS:]) > STALL_DROP * min(history[:-STALL_ROUNDS]):
+        stall = self.stall_rounds
+        if len(history) > stall and min(history[-stall:]) > STALL_DROP * min(history[:-stall]):
             return False  # too slow (a contact edge that moves a few elements a round): Newton takes over
         self.inner_tol = max(min(self.inner_tol, INNER_FRACTION * residual), INNER_FLOOR * self.tol)
         return True

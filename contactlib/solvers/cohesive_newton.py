@@ -47,10 +47,12 @@ GMRES_ITERATIONS = 20 * (GMRES_RESTART + 1)
 
 
 class CohesiveNewton:
-    """One semi-smooth Newton solve of the cohesive contact at one range."""
+    """One semi-smooth Newton solve of the cohesive contact at one range, of at most ``max_iter`` steps and
+    ``krylov`` GMRES iterations (None: :data:`GMRES_ITERATIONS` a step, no bound on their sum)."""
 
-    def __init__(self, operator, heights, adhesion, mean_pressure, penetration, tol, max_iter):
+    def __init__(self, operator, heights, adhesion, mean_pressure, penetration, tol, max_iter, krylov=None):
         self.op, self.law, self.tol, self.max_iter = operator, adhesion, tol, int(max_iter)
+        self.krylov = krylov
         self.shape, self.n = heights.shape, heights.size
         self.h0 = heights.max() - heights
         self.load = mean_pressure
@@ -112,7 +114,8 @@ class CohesiveNewton:
             if residual <= self.tol:
                 it -= 1
                 break
-            if it - best_it > STALL or not residual < bound:
+            budget = GMRES_ITERATIONS if self.krylov is None else min(GMRES_ITERATIONS, self.krylov - krylov)
+            if it - best_it > STALL or not residual < bound or budget <= 0:
                 it -= 1  # no step taken in this pass
                 break
             on = active.astype(float)
@@ -136,7 +139,7 @@ class CohesiveNewton:
                 rhs = np.concatenate([rhs, [-c * (float(p.mean()) - self.load)]])
             # the set solvers' GMRES (:func:`.krylov.gmres`), from zero, to a relative residual
             step, used, _ = gmres(lambda v: (matvec(v), 0.0), precondition, rhs, np.zeros_like(rhs), 0.0,
-                                  GMRES_ITERATIONS, restart=GMRES_RESTART,
+                                  budget, restart=GMRES_RESTART,
                                   relative=min(1e-4, max(0.1 * residual, 1e-10)))
             krylov += used
             # near the answer a step that multiplies the residual is cut back (halved up to BACKTRACK times): the

@@ -4,9 +4,10 @@ energy balance (eqs 9-11, the ``"jkr"`` model): the dimensionless mean pressure 
 (E q0 Lambda)`` against ``Delta / Lambda`` along a loading-unloading path under penetration control, for
 several ``q0 h``, with the pull-off of each path and ``(1 - nu^2) q0 w / (pi E) = 0.05``.
 
-Two pull-offs are reported. ``scaled_pull_off_pressure`` is :func:`contactlib.adhesion_curve`'s (the most
-tensile mean pressure along the path). Under load control only states whose mean pressure grows with the
-approach are stable; a thin remote-pressure layer's path grows more tensile as it nears full contact, so
+Two pull-offs are reported. ``scaled_pull_off_pressure`` is :func:`contactlib.adhesion_curve`'s: the least load
+of the equilibrium curve G = w where it rises (the pull-off of load control, whatever the path's sampling; NaN where
+the curve never rises, as on thin remote-pressure layers). Under load control only states whose mean pressure grows
+with the approach are stable; a thin remote-pressure layer's path grows more tensile as it nears full contact, so
 its most tensile state is one load control never holds. ``scaled_load_pull_off_pressure`` is the most
 tensile of the states that load control holds (:func:`load_control_pull_off`): the paper's pull-off, NaN
 where the path holds none or does not reach the pull-off. ``jump_to_full_contact`` flags a path with no

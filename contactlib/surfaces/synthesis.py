@@ -44,7 +44,9 @@ def self_affine(
         Hurst exponent H in (0, 1]: ``C(q) ~ q^-(2+2H)`` in 2D, ``q^-(1+2H)`` in 1D.
     q_low, q_roll, q_cutoff : float
         Band edges as multiples of ``q0 = 2 pi / length``: flat power on ``[q_low, q_roll)``,
-        power law on ``[q_roll, q_cutoff]``, zero beyond. ``q_cutoff <= n/2`` (Nyquist).
+        power law on ``[q_roll, q_cutoff]``, zero beyond. ``q_cutoff <= n/2`` (Nyquist). A mode on an
+        edge is in the band for every ``length``; a band that holds no mode of the grid is refused
+        (ValueError naming ``q_cutoff``), and so is ``rms_slope`` for a band of Nyquist modes only.
     rms_height, rms_slope : float
         Exactly one: the rms height [length] or rms gradient (spectral, exact for the band) [1].
     seed : int
@@ -93,6 +95,11 @@ def self_affine(
     else:
         q = grid.wavenumber()
     psd = self_affine_psd(q, q0=q0, hurst=hurst, q_low=q_low, q_roll=q_roll, q_cutoff=q_cutoff, dim=dim)
+    if not np.any(psd > 0):  # e.g. q_low = 1.2, q_cutoff = 1.5 in 1D: no mode between them
+        raise ValueError(f"the band [q_low, q_cutoff] = [{q_low}, {q_cutoff}] (multiples of q0 = 2 pi / length) "
+                         f"holds no mode of the {'x'.join(map(str, grid.shape))} grid"
+                         + ("" if anisotropy == 1 else f" at anisotropy={anisotropy}, angle={angle}")
+                         + ": raise q_cutoff or lower q_low")
     noise = np.random.default_rng(seed).standard_normal(grid.shape)
     spectrum = fft.rfftn(noise)
     if synthesis == "random-phase":  # unit modulus, phases of white noise (so Hermitian symmetry holds)
@@ -103,6 +110,10 @@ def self_affine(
         current = statistics.rms_height(heights)
     else:
         current = statistics.rms_slope(heights, length=grid.lengths)
+        if current == 0:  # the band holds only Nyquist modes, whose slope rms_slope leaves undefined
+            raise ValueError(f"rms_slope cannot be met: the band [q_low, q_cutoff] = [{q_low}, {q_cutoff}] holds "
+                             f"only Nyquist modes (n/2 = {n / 2}), which have no defined slope; give rms_height "
+                             "or lower q_low")
     heights *= target / current
 
     dims = ("x", "y")[:dim]
