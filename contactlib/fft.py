@@ -178,15 +178,6 @@ def get_fft(shape: tuple[int, ...], slot: str = "work") -> RealFFT:
     return plan
 
 
-def release_fft(shape: tuple[int, ...], slot: str) -> None:
-    """Drop this thread's cached plan for ``shape`` in ``slot`` (its buffers go with it): for a transform made once
-    per solve beside the solver's own plans, which must neither hold a grid's memory between solves nor share the
-    solver's buffers (planning with wisdom in hand takes milliseconds)."""
-    cache = getattr(_local, "plans", None)
-    if cache is not None:
-        cache.pop((tuple(shape), _settings["threads"], _settings["effort"], slot), None)
-
-
 class SharedSpectrum:
     """Named real buffers sharing one spectrum buffer, each with its own planned transforms.
 

@@ -555,7 +555,9 @@ def test_adhesion_curve_flags_failed_steps_and_withholds_its_scalars():
     assert failed.attrs["converged"] == 0 and "did not converge" in failed.attrs["convergence_message"]
     assert np.any(failed.converged.values == 0) and np.all(np.isfinite(failed.residual.values))
     assert np.isnan(float(failed.pull_off_pressure)) and np.isnan(float(failed.hysteresis_energy))
-    fine = contactlib.adhesion_curve(cyl, length=1.0, E=1.0, nu=0.3, adhesion=law, penetrations=[0, 0.004])
+    # from out of contact and back: a path that stops at d = 0 in tension has not passed its pull-off (NaN, with
+    # attrs['pull_off_status'])
+    fine = contactlib.adhesion_curve(cyl, length=1.0, E=1.0, nu=0.3, adhesion=law, penetrations=[-0.004, 0, 0.004])
     assert fine.attrs["converged"] == 1 and float(fine.pull_off_pressure) < 0
     assert np.all(fine.residual.values <= 1e-6) and fine.residual.attrs["units"] == "1"
     with pytest.raises(ValueError, match="adhesion must be a contactlib.Adhesion"):

@@ -49,10 +49,10 @@ def rough_scenes(draw, dim=None, sizes=None):
     dim = draw(st.sampled_from([1, 2])) if dim is None else dim
     sizes = sizes or ((48, 512) if dim == 1 else (16, 64))
     n = draw(st.integers(*sizes))
-    # a band of one wavenumber (q_cutoff = q_low) can lose its mode to rounding: tested apart, in
-    # test_metamorphic_surfaces.py, so these scenes hold two wavenumbers or more
+    # a band of one wavenumber (q_cutoff = q_roll) included: its edge modes are kept at every window length
+    # (test_surfaces.py::test_band_edge_modes_are_kept_whatever_the_window)
     q_roll = draw(st.integers(1, 3))
-    q_cutoff = draw(st.integers(q_roll + 1, max(q_roll + 1, n // 4)))
+    q_cutoff = draw(st.integers(q_roll, max(q_roll + 1, n // 4)))
     heights = surfaces.self_affine(
         n, length=10 ** draw(st.floats(-6, 1)), hurst=draw(st.floats(0.3, 1.0)), q_roll=q_roll, q_cutoff=q_cutoff,
         rms_slope=10 ** draw(st.floats(-2.5, -0.5)), seed=draw(st.integers(0, 2**16)), dim=dim)

@@ -48,6 +48,42 @@ def test_same_seed_same_bits_and_different_seed_differs():
     assert not np.array_equal(a.values, c.values)
 
 
+@pytest.mark.parametrize("length", [1e-6, 1e-5, 1e-4, 1.0, 10**2.25])
+def test_one_mode_band_is_that_mode_at_every_length(length):
+    """``q_low = q_roll = q_cutoff = 1`` is the one mode ``q0``. Its rounded ``q / q0`` came out an ulp above 1 at
+    some windows (1e-6, 1e-4, 10^2.25), left the band, and the rms normalisation divided by zero."""
+    kw = dict(hurst=1, q_low=1, q_roll=1, q_cutoff=1, rms_slope=1, dim=1)
+    h = contactlib.surfaces.self_affine(8, length=length, **kw)
+    assert analysis.rms_slope(h) == pytest.approx(1.0, rel=1e-12)
+    power = np.abs(np.fft.rfft(h.values)) ** 2
+    assert power[1] / power.sum() == pytest.approx(1.0, abs=1e-12)
+    # the same surface on the window's coordinates: at unit rms slope the heights scale with the window
+    unit = contactlib.surfaces.self_affine(8, length=1.0, **kw)
+    np.testing.assert_allclose(h.values / length, unit.values, rtol=0, atol=1e-12 * float(np.abs(unit).max()))
+
+
+@pytest.mark.parametrize("band", [dict(dim=1, q_roll=1, q_cutoff=2), dict(q_roll=2, q_cutoff=5),
+                                  dict(q_low=2, q_roll=2, q_cutoff=5, anisotropy=0.5)])
+def test_band_edge_modes_are_kept_whatever_the_window(band):
+    """Modes on ``q_low`` or ``q_cutoff`` belong to the band at every window length. At L = 10^1.5 the rounded
+    ``q / q0`` of the q0 mode (1D), of (3, 4) and (5, 0) on ``q_cutoff = 5`` (2D), of (2, 0) on ``q_low = 2``
+    (anisotropic) fell outside, and the mode was dropped: heights 1.87 off at unit rms in 1D."""
+    dim = band.get("dim", 2)
+    n = 8 if dim == 1 else 16
+    kw = dict(hurst=1, rms_height=1.0, seed=0) | band
+    unit = contactlib.surfaces.self_affine(n, length=1.0, **kw)
+    # the band's modes counted exactly on the integer lattice: k^2 = i^2 + j^2 / anisotropy (angle 0; 0.5 is exact)
+    i = np.fft.fftfreq(n, 1 / n)[:, None] if dim == 2 else np.arange(n // 2 + 1)
+    j = np.arange(n // 2 + 1)[None, :] if dim == 2 else 0
+    k2 = i**2 + j**2 / band.get("anisotropy", 1.0)
+    expected = (k2 >= band.get("q_low", 1) ** 2) & (k2 <= band["q_cutoff"] ** 2)
+    for length in [1.0, 3.0, 7.0, 10**1.5]:
+        h = contactlib.surfaces.self_affine(n, length=length, **kw)
+        amplitude = np.abs(np.fft.rfftn(h.values))
+        np.testing.assert_array_equal(amplitude > 1e-9 * amplitude.max(), expected, err_msg=f"length={length}")
+        np.testing.assert_allclose(h.values, unit.values, rtol=0, atol=1e-12)
+
+
 @pytest.mark.parametrize("gamma,angle", [(0.3, 0.0), (0.5, np.pi / 3), (0.2, 2.0)])
 def test_anisotropy_recovered(gamma, angle):
     h = contactlib.surfaces.self_affine(256, hurst=0.8, q_roll=2, q_cutoff=64, rms_slope=0.1, seed=4,
@@ -149,6 +185,12 @@ def test_generated_surfaces_carry_their_provenance():
     (lambda: contactlib.surfaces.wavy(32, amplitude=0.01, wavelengths=40), "wavelengths"),
     (lambda: contactlib.surfaces.self_affine(32, hurst=0.8, q_roll=2, q_cutoff=8, rms_slope=0.1, anisotropy=0.5,
                                              angle=float("nan")), "angle"),
+    (lambda: contactlib.surfaces.self_affine(8, hurst=0.8, q_low=1.2, q_roll=1.3, q_cutoff=1.5, rms_height=1.0,
+                                             dim=1), "q_cutoff"),  # no multiple of q0 in the band
+    (lambda: contactlib.surfaces.self_affine(16, hurst=0.8, q_low=1, q_roll=1, q_cutoff=1, rms_height=1.0,
+                                             anisotropy=0.5, angle=0.3), "q_cutoff"),  # stretched past q0: no mode
+    (lambda: contactlib.surfaces.self_affine(8, hurst=0.8, q_low=4, q_roll=4, q_cutoff=4, rms_slope=0.1, dim=1),
+     "rms_slope"),  # only the Nyquist mode, which has no defined slope
     (lambda: contactlib.two_scale.random_asperity_field(9, coverage=0.2, nodes_per_spacing=8,
                                                         height_scatter=float("nan")), "height_scatter"),
     (lambda: contactlib.two_scale.random_asperity_field(9, coverage=0.2, nodes_per_spacing=8, height_scatter=-0.5),

@@ -67,12 +67,15 @@ MAX_NEWTON = 60
 
 NEWTON_WORK = 2**28
 """Bound on the GMRES iterations of every Newton solve of one cohesive solve together (its continuations'
-included), times the points of the grid: a failing solve comes back in about half a minute of GMRES at 256^2 on a
-loaded 2-core machine (4096 iterations there; without it a Maugis sphere at lambda 5 raised after 246 s and 28,400
-GMRES iterations, at lambda 3.6 after 137 s and 14,500)."""
+included), times the points of the grid (4096 iterations at 256^2, 16,384 at 128^2; the adhesion tests use at most
+8000 on 64^2). A non-periodic Maugis sphere at lambda 5 on 256^2 (1.7 elements across the process zone) raised
+after 246 s and 28,400 GMRES iterations without it; with it, after 40 s, its frozen-traction continuation included
+(0.74 s for the non-adhesive solve, loaded 2-core machine)."""
 
-NEWTON_KRYLOV_FLOOR = 4 * GMRES_ITERATIONS
-"""The least GMRES iterations that bound gives a solve, whatever its grid (four Newton steps' worth)."""
+NEWTON_KRYLOV_FLOOR = 2 * GMRES_ITERATIONS
+"""The least GMRES iterations that bound gives a solve, whatever its grid (two Newton steps' worth; the adhesion
+tests' 512^2 Newton solve takes 87). Issue 38's Maugis sphere at lambda 5 on 512^2 (3.4 elements across the zone)
+raised after 482 s with twice this floor on the loaded machine (three solves at once): most of it in Newton."""
 
 RANGES = (8.0, 4.0, 2.0, 1.0)
 """Range multipliers of the first continuation a stalled solve restarts with (from its own start)."""
@@ -391,8 +394,8 @@ class _FrozenTraction:
             a = self.mix(a, self.image)
 
     def _residual(self, p, g, image):
-        """:meth:`.cohesive_newton.CohesiveNewton.residual_of` (mean interpenetration) in one sweep, writing the law's traction at
-        the gap ``g`` into ``image``."""
+        """:meth:`.cohesive_newton.CohesiveNewton.residual_of` (mean interpenetration) in one sweep, writing the law's
+        traction at the gap ``g`` into ``image``."""
         m, law = self.measure, self.law
         code = sweeps.MAUGIS if law.model == "maugis" else sweeps.EXPONENTIAL
         phi_sum, overlap, comp, weight, traction, interacting = sweeps.law_residual(
