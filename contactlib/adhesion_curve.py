@@ -20,7 +20,8 @@ branch ends the state jumps, and the jump is recorded:
   with a ValueError naming the limit.
 
 Reported (Clarifications, "Adhesion"): ``pull_off_pressure``, the pull-off of load control (cohesive laws: the
-most tensile mean pressure along the path; ``"jkr"``: the least load of the equilibrium curve ``G = w`` on its
+most tensile mean pressure along the path where the path went past it, else NaN with ``attrs['pull_off_status']``;
+``"jkr"``: the least load of the equilibrium curve ``G = w`` on its
 rising stretch, :meth:`~contactlib.solvers.energy.EnergyFamily.pull_off`, whatever the path's sampling);
 ``pull_off_penetration``, the approach of the jump out of contact on unloading (cohesive: of the last state
 before it; ``"jkr"``: where the edge retreats past the curve's least approach under penetration control, the
@@ -224,7 +225,7 @@ def _energy_path(setup, adhesion, path, load_control, unloading):
     rows, m = [], -1
     largest = fam.a.size  # the index of the closed window (one past the largest partial domain)
     fam_definite = setup.operator.definite
-    pull_off, _ = fam.pull_off(w)
+    pull_off, k_pull_off = fam.pull_off(w)
     turned = -1  # the domain unloading starts from
     for value, back in zip(path, unloading):
         if back and turned < 0 <= m:
@@ -253,13 +254,14 @@ def _energy_path(setup, adhesion, path, load_control, unloading):
             m_new = fam.descend(m if m < largest else largest - 1, d, w)
             if fam.beyond(m_new):
                 raise fam.refusal("penetrations", d)
-        state = adhesive_contact.energy_state(setup, fam, m_new, d, "", mean_pressure=float(value) if load_control
-                                              else None)
+        # where the grid does not resolve w at this domain, the non-adhesive solve (adhesive_contact.energy_or_plain)
+        state = adhesive_contact.energy_or_plain(setup, fam, w, m_new, d, "", mean_pressure=float(value)
+                                                 if load_control else None)
         setup.check_window(state.pressure)
         area = float(np.count_nonzero(state.in_contact)) / state.in_contact.size
         before = 0.0 if m < 0 else 1.0 if m >= fam.ends.size else float(fam.ends[m]) / fam.size
         jump = _jumped(area, before, fam.size)
-        rows.append({"penetration": d, "mean_pressure": state.mean_pressure, "contact_area": area,
+        rows.append({"penetration": state.penetration, "mean_pressure": state.mean_pressure, "contact_area": area,
                      "interaction_area": area, "converged": int(state.converged), "jump": int(bool(rows) and jump),
                      "residual": state.residual})
         m = m_new
@@ -271,7 +273,13 @@ def _energy_path(setup, adhesion, path, load_control, unloading):
         jump_out = fam.pull_off_penetration(w)
     elif left:
         jump_out = fam.detachment_penetration(w, start=turned if turned >= 0 else None)
-    return rows, {"pull_off_pressure": pull_off, "pull_off_penetration": jump_out}
+    scalars = {"pull_off_pressure": pull_off, "pull_off_penetration": jump_out}
+    if k_pull_off == -1 and w > 0 and fam.a.size > 1 and w < float(fam.least_release_rate()[0]):
+        scalars["pull_off_status"] = (
+            f"the pull-off's contact is under a spacing (work {w:.4g} below {float(fam.least_release_rate()[0]):.4g}, "
+            "the least energy release rate of the first growth step): the first touch's pull-off at that work, "
+            "scaled to this one as the continuum's (EnergyFamily.open_point); a finer grid resolves it")
+    return rows, scalars
 
 
 def _curve_scalars(ds: xr.Dataset, scalars: dict, length_unit: str, pressure_unit: str) -> None:
@@ -283,13 +291,47 @@ def _curve_scalars(ds: xr.Dataset, scalars: dict, length_unit: str, pressure_uni
     Not where a failed step withheld the scalars."""
     if not scalars or ds.attrs.get("converged") != 1:
         return
+    status = scalars.pop("pull_off_status", "")
     for name, value in scalars.items():
         ds[name] = ((), float(value), attrs_for(name, length=length_unit, pressure=pressure_unit))
+    ds.attrs.pop("pull_off_status", None)  # the sampled states' status: the curve's pull-off is whatever they are
+    if status:
+        ds.attrs["pull_off_status"] = status
     ds.attrs["pull_off_definition"] = (
         "pull_off_pressure: the least mean pressure of the equilibrium curve G = w (its points between consecutive "
         "domains, second order in the spacing), whatever the path's sampling; pull_off_penetration: where the path "
         "leaves contact (penetration control: the edge retreating past the curve's least approach; load control: "
         "the curve's approach at the pull-off), NaN where the path does not")
+
+
+def _sampled_pull_off(P: np.ndarray, area: np.ndarray, ok: np.ndarray, load_control: bool) -> tuple[float, str]:
+    """A path's pull-off from its states (cohesive laws; the energy method's is its curve's, :func:`_curve_scalars`)
+    and, where it is NaN, why. The pull-off is the turning point of the converged branch (Clarifications,
+    "Adhesion"): the least sampled load is one only where the path went past it. Under penetration control: a
+    later solved state carries more, or it or a later one is out of contact (the branch detached), and the least is
+    not the path's first state unless that one is out of contact (else the branch before it is unsampled). Under
+    load control: a later load had no equilibrium (``detached``). A path that stops short (a w -> 0 path of compressive states
+    gave +4.5e-4, its least sampled compressive state, as its pull-off) has NaN. The turning point is the least
+    sampled load: within the step."""
+    solved = np.flatnonzero(ok)
+    if solved.size == 0:
+        return math.nan, ""
+    least = solved[int(np.argmin(P[solved]))]
+    lowest = float(P[least])
+    if load_control:
+        if np.any(~ok[least:]):
+            return lowest, ""
+        return math.nan, ("the path did not reach pull-off: every load asked has an equilibrium (ask more tension "
+                          "under load control, or follow the approach)")
+    later = solved[solved > least]
+    out = area[least] == 0  # the least is out of contact: the branch has detached by then
+    passed = out or bool(np.any((P[later] > lowest) | (area[later] == 0)))
+    started = out or least != solved[0]
+    if passed and started:
+        return lowest, ""
+    return math.nan, (f"the path did not reach pull-off: its least mean pressure {lowest:.6g} is at its "
+                      f"{'last' if not passed else 'first'} solved state, in contact, where the branch may still "
+                      "fall (extend the path past the turning point: from and back out of contact)")
 
 
 def _label(setup, adhesion, rows, unloading, load_control, wall, length_unit, pressure_unit) -> xr.Dataset:
@@ -309,7 +351,7 @@ def _label(setup, adhesion, rows, unloading, load_control, wall, length_unit, pr
     ds = xr.Dataset(data, coords={"step": ("step", step, a("step"))})
     d, P, area = ds["penetration"].values, ds["mean_pressure"].values, ds["contact_area"].values
     ok = np.isfinite(P) & np.isfinite(d)
-    pull_off = float(np.min(P[ok])) if ok.any() else math.nan
+    pull_off, pull_off_status = _sampled_pull_off(P, area, ok, load_control)
     # the jump out of contact on unloading: the last closed state before an open one
     pull_off_d = math.nan
     solved = [k for k in range(step.size) if ok[k] and unloading[k]]
@@ -339,6 +381,8 @@ def _label(setup, adhesion, rows, unloading, load_control, wall, length_unit, pr
                      "contactlib_version": __version__,
                      "load_control": "mean_pressure" if load_control else "penetration", "wall_time": wall,
                      **{k: v for k, v in setup.attrs.items() if k != "load_control"}, **adhesion.attrs()})
+    if pull_off_status:
+        ds.attrs["pull_off_status"] = pull_off_status
     if load_control and not ok.all():
         first = int(np.flatnonzero(~ok)[0])
         ds.attrs["detached"] = (f"no adhesive equilibrium from step {first} (mean pressure "

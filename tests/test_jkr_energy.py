@@ -190,3 +190,85 @@ def test_family_by_symmetry_orbits_is_the_dense_family(case):
     p = fam.pressure(m, d)
     np.testing.assert_allclose(p[order[:e]], dense_p, rtol=0, atol=1e-10 * np.abs(dense_p).max())
     assert np.count_nonzero(p) == e
+
+
+# --- w -> 0: the non-adhesive limit (issue 38) ----------------------------------------------------------------
+
+SMALL = dict(E=1.0, nu=0.5, periodic=False)
+SMALL_DEPTH = (5 / 40) ** 2  # Hertz contact of 5 spacings in radius on the 40^2 sphere of radius 1
+
+
+@pytest.fixture(scope="module")
+def small_sphere():
+    return contactlib.surfaces.paraboloid(40, length=1.0, radius=1.0)
+
+
+def _quiet(call, *args, **kwargs):
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", contactlib.ResolutionWarning)  # 5 spacings of contact, on purpose
+        return call(*args, **kwargs)
+
+
+@pytest.mark.parametrize("work", [0.0, 1e-12])
+@pytest.mark.parametrize("control", ["penetration", "mean_pressure"])
+def test_vanishing_work_is_the_plain_solve(small_sphere, work, control):
+    """A work of adhesion the grid does not resolve (below the least energy release rate of the disc family's
+    growth steps, 2e-6 here) placed the disc's edge where G is least, whatever w: under penetration control the
+    disc interpenetrated outside (ConvergenceError, residual 4.8e-3), under load control no point of the curve
+    G = w existed (ValueError). Now the state is the plain solve, and attrs say why."""
+    plain = _quiet(contactlib.solve, small_sphere, penetration=SMALL_DEPTH, tol=1e-10, **SMALL)
+    asked = {"penetration": SMALL_DEPTH} if control == "penetration" else {"mean_pressure": float(plain.mean_pressure)}
+    sticky = _quiet(contactlib.solve, small_sphere, adhesion=contactlib.Adhesion(work=work, model="jkr"), tol=1e-8,
+                    **asked, **SMALL)
+    peak = float(plain.pressure.max())
+    assert float(np.abs(sticky.pressure - plain.pressure).max()) / peak < 1e-5
+    assert float(sticky.penetration) == pytest.approx(SMALL_DEPTH, rel=1e-5)
+    assert float(sticky.mean_pressure) == pytest.approx(float(plain.mean_pressure), rel=1e-5)
+    assert "solved without adhesion" in sticky.attrs["adhesion_branch"]
+
+
+def test_unresolved_work_under_load_control_warns_instead_of_refusing(small_sphere):
+    """w = 1e-6 resolves the first three growth steps only: load control at the Hertz load of 5 spacings was
+    refused as growing 'beyond the energy method's largest domain (18.5 spacings)'. Now it is the plain state, with
+    a ResolutionWarning: JKR's correction to the load there is several per cent."""
+    load = float(_quiet(contactlib.solve, small_sphere, penetration=SMALL_DEPTH, tol=1e-10, **SMALL).mean_pressure)
+    with pytest.warns(contactlib.ResolutionWarning, match="below the energy method's resolution"):
+        state = contactlib.solve(small_sphere, adhesion=contactlib.Adhesion(work=1e-6, model="jkr"),
+                                 mean_pressure=load, tol=1e-8, **SMALL)
+    assert float(state.mean_pressure) == pytest.approx(load, rel=1e-8)
+    assert float(state.penetration) == pytest.approx(SMALL_DEPTH, rel=1e-5)
+
+
+@pytest.mark.parametrize("work", [0.0, 2e-11])
+def test_vanishing_work_pull_off_tends_to_jkr(small_sphere, work):
+    """The pull-off of the curve G = w as w -> 0: it was NaN (no point of the curve existed below the grid's
+    resolution). The first touch's own pull-off (one element: a flat punch, ~ sqrt(w)) would be -1.4e-8 at
+    w = 2e-11, 145 times JKR's -3/2 pi w R and beyond DMT's bound; scaled as the continuum's it is 0.81 of JKR's
+    (measured), and 0 at w = 0. The path retraces the plain one."""
+    depths = SMALL_DEPTH * np.array([0.25, 0.5, 1.0])
+    path = _quiet(contactlib.adhesion_curve, small_sphere, adhesion=contactlib.Adhesion(work=work, model="jkr"),
+                  penetrations=depths, tol=1e-8, **SMALL)
+    plain = [float(_quiet(contactlib.solve, small_sphere, penetration=d, tol=1e-10, **SMALL).mean_pressure)
+             for d in depths]
+    np.testing.assert_allclose(path.mean_pressure.values, np.r_[plain, plain[-2::-1]], rtol=1e-5)
+    jkr = -1.5 * np.pi * work * 1.0 / 1.0**2
+    pull_off = float(path.pull_off_pressure)
+    if work == 0:
+        assert pull_off == 0.0 and "pull_off_status" not in path.attrs
+    else:
+        assert 0.6 * jkr > pull_off > 1.2 * jkr  # 0.81 measured
+        assert "under a spacing" in path.attrs["pull_off_status"]
+
+
+def test_a_compressive_cohesive_path_has_not_reached_pull_off(small_sphere):
+    """A Maugis path (w -> 0) that stays compressive reported its least sampled state, +4.5e-4 (compressive), as its
+    pull-off. The pull-off is the turning point of the branch: NaN with a status where the path never reaches it;
+    the same path from and back out of contact passes it (pull-off within DMT's 2 pi w R of 0)."""
+    law = contactlib.Adhesion(work=2e-11, range=SMALL_DEPTH, model="maugis")
+    short = _quiet(contactlib.adhesion_curve, small_sphere, adhesion=law, tol=1e-8,
+                   penetrations=SMALL_DEPTH * np.array([0.25, 0.5, 1.0]), **SMALL)
+    assert short.attrs["converged"] == 1 and np.isnan(float(short.pull_off_pressure))
+    assert "did not reach pull-off" in short.attrs["pull_off_status"]
+    full = _quiet(contactlib.adhesion_curve, small_sphere, adhesion=law, tol=1e-8,
+                  penetrations=SMALL_DEPTH * np.array([-2.0, 0.25, 0.5, 1.0]), **SMALL)
+    assert -2 * np.pi * law.work <= float(full.pull_off_pressure) <= 0 and "pull_off_status" not in full.attrs

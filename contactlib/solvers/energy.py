@@ -25,6 +25,13 @@ leading block, so one factorisation (``O(n^3 / 3)`` in the ``n`` orbits) and two
 sphere (12,000 elements, 1,600 orbits) takes about 0.1 s; of a 256^2 one (50,000, 6,400) a few seconds.
 The family ends at the largest domain the window holds, or at :data:`MAX_UNKNOWNS` orbits: a state that needs
 a larger one is refused, naming the limit (:attr:`EnergyFamily.limit`), never cut to the largest.
+
+On a grid ``G`` of a growth step is never zero (a ring of elements at unequal distances cannot unload at once): a
+``w`` below a step's least ``G`` (:meth:`EnergyFamily.least_release_rate`: 3.6e-7 to 1.9e-5 over the first 18
+steps of a 40^2 sphere of radius 1, E* = 4/3, unit window) is not resolved there, and the edge moves where ``G`` is
+least, the non-adhesive edge of discs. The curve ``G = w`` takes those points (so ``w -> 0`` has a curve, a
+load-controlled state and a pull-off that tends to 0), and :func:`contactlib.adhesive_contact.energy_or_plain`
+solves such a state without adhesion, saying so.
 """
 
 from __future__ import annotations
@@ -174,39 +181,94 @@ class EnergyFamily:
             return np.concatenate([[-1], m[stable]])
         return m[stable]
 
+    def resolved(self, work: float) -> np.ndarray:
+        """For each ``m < M``, whether ``G = w`` has a root between domains ``m`` and ``m + 1``: ``w`` at least the
+        step's least energy release rate :meth:`least_release_rate`. Where it has none the grid does not resolve
+        ``w`` there: the edge moves where ``G`` is least (:meth:`growth_threshold`), whatever ``w`` is."""
+        return np.isfinite(self.equilibrium_penetration(work))
+
+    def least_release_rate(self) -> np.ndarray:
+        """For each ``m < M``, the least ``G`` [energy/area] of the step from domain ``m`` to ``m + 1`` over the
+        approach (at :meth:`growth_threshold`'s vertex). It is positive on a grid: a ring of elements at unequal
+        distances cannot unload all at once, so a work of adhesion below it is not resolved (0 in the continuum)."""
+        da, db, dc = np.diff(self.a), np.diff(self.b), np.diff(self.c)
+        return np.maximum(dc - db * db / da, 0.0) / (2 * np.diff(self.ends))
+
+    def adhesive_load(self, m: int, work: float) -> float:
+        """An estimate [pressure] of what a work of adhesion ``w`` changes domain ``m``'s mean traction by: the
+        shift of the growth threshold from the vertex that ``G = w`` makes where the least ``G`` is zero (the
+        continuum), ``sqrt(2 w dn / da)``, times the load per approach; for the note of a state where the grid does
+        not resolve ``w`` (:meth:`resolved`)."""
+        k = min(max(int(m), 0), self.a.size - 2)
+        da = float(self.a[k + 1] - self.a[k])
+        shift = math.sqrt(2 * work * float(self.ends[k + 1] - self.ends[k]) / da) if da > 0 else math.inf
+        return float(self.a[max(int(m), 0)]) * shift / self.size
+
+    def open_point(self, work: float) -> tuple[float, float]:
+        """The start of :meth:`equilibrium_curve`: the approach where domain 0 opens (:meth:`open_threshold`) and
+        the mean of its traction there and the open state's (zero). At ``w = 0`` it is ``(0, 0)``: the first
+        touch.
+
+        One element pulled off alone is a flat punch, whose pull-off grows as ``sqrt(w)``: far above the sphere's
+        ``3/2 pi w R`` (150 times at ``w`` 3e-5 of the first step's least ``G``), beyond even DMT's ``2 pi w R``. So
+        where the grid does not resolve ``w`` at the first step (``w`` below its :meth:`least_release_rate`, the
+        pull-off's contact under a spacing), the load is the first touch's at that least ``G``, scaled to ``w`` as
+        the continuum's pull-off scales: ``w`` on a surface of revolution, ``w^(2/3)`` on a profile (Johnson's
+        cylinder); 0.8 of JKR's on a 40^2 sphere at ``w`` 3e-5 of it."""
+        least = float(self.least_release_rate()[0]) if self.a.size > 1 else 0.0
+        if not 0 < work < least:
+            d = self.open_threshold(work)
+            return d, 0.5 * float(self.mean_pressure(0, d))
+        disc = self.ends[1] - self.ends[0] > 2  # a first ring of more than two elements: a 2D grid
+        d = self.open_threshold(least)
+        load = 0.5 * float(self.mean_pressure(0, d)) * (work / least) ** (1.0 if disc else 2.0 / 3.0)
+        return self.penetration_at(0, 2 * load), load
+
     def equilibrium_curve(self, work: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """The equilibrium states between domains ``m`` and ``m + 1``: closed area (their mean), approach
-        (:meth:`equilibrium_penetration`) and mean traction over the window (the mean of the two domains'
-        at that approach: the edge lies between them). NaN where no tensile-edge root exists.
+        (:meth:`growth_threshold`: the tensile root of ``G = w``, or where the grid does not resolve ``w`` there,
+        :meth:`resolved`, the vertex where ``G`` is least: the non-adhesive edge) and mean traction over the window
+        (the mean of the two domains' at that approach: the edge lies between them).
 
         These points sample the continuous equilibrium curve ``G = w`` to second order in the spacing (the
         discrete branch, whose domain grows by whole elements, jumps from the one domain's traction to the
-        other's at each point: a sawtooth about them). Joined by straight segments they are the curve that
-        :meth:`pull_off` and :meth:`load_state` use."""
-        d = self.equilibrium_penetration(work)
+        other's at each point: a sawtooth about them). Joined by straight segments, and started at
+        :meth:`open_point`, they are the curve that :meth:`pull_off` and :meth:`load_state` use. Before the
+        vertex fallback, a small ``w`` (below the least ``G`` of the steps) left every point NaN: no load-controlled
+        state and no pull-off as ``w -> 0`` (issue 38)."""
+        d = self.growth_threshold(work)
         m = np.arange(d.size)
         area = 0.5 * (self.ends[:-1] + self.ends[1:]) * self.element
         pressure = 0.5 * (self.mean_pressure(m, d) + self.mean_pressure(m + 1, d))
         return area, d, pressure
 
+    def _curve_from_open(self, work: float) -> tuple[np.ndarray, np.ndarray]:
+        """:meth:`equilibrium_curve`'s approaches and loads with :meth:`open_point` in front (index ``k + 1`` is
+        the curve's point ``k``)."""
+        _, d, P = self.equilibrium_curve(work)
+        d0, P0 = self.open_point(work)
+        return np.r_[d0, d], np.r_[P0, P]
+
     def pull_off(self, work: float) -> tuple[float, int]:
         """The pull-off of load control [pressure] and the point ``k`` of :meth:`equilibrium_curve` where it
-        lies: the least load of the curve's rising stretches (stable under load control: the load grows with
-        the contact), at the start of one. ``(NaN, -1)`` where the curve nowhere rises (no stable partial
-        contact, or the family ends before it does). A wavy profile's curve falls again toward full contact
-        (Johnson's ``-alpha sqrt(tan)``): that stretch is unstable and not a pull-off.
+        lies (``-1``: :meth:`open_point`, where the least load is the first touch: a work the grid does not
+        resolve, or ``w = 0``): the least load of the curve's rising stretches (stable under load control: the
+        load grows with the contact), at the start of one. ``(NaN, -2)`` where the curve nowhere rises (no
+        stable partial contact, or the family ends before it does). A wavy profile's curve falls again toward
+        full contact (Johnson's ``-alpha sqrt(tan)``): that stretch is unstable and not a pull-off.
 
         Its error against the continuous curve is second order in the spacing: at most ``(9/32) (dx / a_c)^2``
         of ``|P_c|`` for a JKR sphere (the curve's ``P'' = 4.5 |P_c| / a_c^2`` at ``a_c``), 0.1 % at 16
-        spacings in ``a_c``; on a 128^2 sphere with 16 spacings in ``a_c`` it is 1.005 JKR's."""
-        _, _, P = self.equilibrium_curve(work)
+        spacings in ``a_c``; on a 128^2 sphere with 16 spacings in ``a_c`` it is 1.005 JKR's. Where ``a_c`` is
+        below a spacing (``w -> 0``) it is the first touch's, which tends to 0 with ``w`` as JKR's does."""
+        _, P = self._curve_from_open(work)
         lo, hi = P[:-1], P[1:]
         with np.errstate(invalid="ignore"):
             rising = np.flatnonzero(np.isfinite(lo) & np.isfinite(hi) & (hi > lo))
         if rising.size == 0:
-            return math.nan, -1
+            return math.nan, -2
         k = int(rising[np.argmin(lo[rising])])
-        return float(P[k]), k
+        return float(P[k]), k - 1
 
     def pull_off_penetration(self, work: float) -> float:
         """The approach [length] of :meth:`equilibrium_curve` at its least load (:meth:`pull_off`): the jump
@@ -215,11 +277,13 @@ class EnergyFamily:
         the three points about the least (its load within a step's square of the least one's), and its approach
         interpolated there: the point itself was 16 % off JKR's on a 128^2 sphere (16 spacings in ``a_c``), the
         vertex 4 %. NaN where :meth:`pull_off` is."""
-        _, d, P = self.equilibrium_curve(work)
+        d, P = self._curve_from_open(work)
         _, k = self.pull_off(work)
+        k += 1  # on the curve from the open point
         if k < 0:
             return math.nan
-        if k == 0 or not (np.isfinite(P[k - 1]) and np.isfinite(d[k - 1]) and np.isfinite(d[k + 1])):
+        if k == 0 or k + 1 >= P.size or not (np.isfinite(P[k - 1]) and np.isfinite(d[k - 1])
+                                             and np.isfinite(d[k + 1])):
             return float(d[k])
         curvature = P[k - 1] - 2 * P[k] + P[k + 1]
         shift = 0.5 * (P[k - 1] - P[k + 1]) / curvature if curvature > 0 else 0.0
@@ -237,17 +301,18 @@ class EnergyFamily:
         at the approach that makes its load the one asked (the load is linear in ``d``). That approach lies
         between the two points' (``t_k <= d <= t_{k+1}``: domain ``k + 1`` carries less than the point's mean
         at ``t_k`` and more at ``t_{k+1}``), where domain ``k + 1`` is the stable one under penetration
-        control too: an equilibrium of the discrete family, at the load asked exactly. ``near``: the
-        segment nearest that domain (a path's previous state); else that of largest contact."""
-        _, _, P = self.equilibrium_curve(work)
+        control too: an equilibrium of the discrete family, at the load asked exactly. The segment from
+        :meth:`open_point` to point 0 is domain 0's. ``near``: the segment nearest that domain (a path's
+        previous state); else that of largest contact."""
+        _, P = self._curve_from_open(work)
         lo, hi = P[:-1], P[1:]
         with np.errstate(invalid="ignore"):
             rising = np.isfinite(lo) & np.isfinite(hi) & (hi > lo) & (lo <= mean_pressure) & (mean_pressure <= hi)
-        segments = np.flatnonzero(rising)
+        segments = np.flatnonzero(rising)  # segment j: domain j (from the open point)
         if segments.size == 0:
             return None
-        k = int(segments[-1] if near is None else segments[np.argmin(np.abs(segments + 1 - max(near, 0)))])
-        return k + 1, self.penetration_at(k + 1, mean_pressure)
+        m = int(segments[-1] if near is None else segments[np.argmin(np.abs(segments - max(near, 0)))])
+        return m, self.penetration_at(m, mean_pressure)
 
     def detachment_penetration(self, work: float, start: int | None = None) -> float:
         """The approach at which unloading under penetration control from domain ``start`` (default the
