@@ -310,9 +310,9 @@ def _sampled_pull_off(P: np.ndarray, area: np.ndarray, ok: np.ndarray, load_cont
     "Adhesion"): the least sampled load is one only where the path went past it. Under penetration control: a
     later solved state carries more, or it or a later one is out of contact (the branch detached), and the least is
     not the path's first state unless that one is out of contact (else the branch before it is unsampled). Under
-    load control: a later load had no equilibrium (``detached``). A path that stops short (a w -> 0 path of compressive states
-    gave +4.5e-4, its least sampled compressive state, as its pull-off) has NaN. The turning point is the least
-    sampled load: within the step."""
+    load control: a later load had no equilibrium (``detached``). A path that stops short (a w -> 0 path of
+    compressive states gave +4.5e-4, its least sampled compressive state, as its pull-off) has NaN. The turning
+    point is the least sampled load: within the step."""
     solved = np.flatnonzero(ok)
     if solved.size == 0:
         return math.nan, ""

@@ -9,7 +9,6 @@ its symmetries), which :func:`family` builds to the largest domain the window ho
 
 from __future__ import annotations
 
-import warnings
 from dataclasses import dataclass
 
 import numpy as np
@@ -138,7 +137,7 @@ def unresolved_work(fam: EnergyFamily, m: int, work: float) -> bool:
     return any(not ok[k] for k in steps)
 
 
-def plain_state(setup, fam: EnergyFamily, work: float, *, mean_pressure=None, penetration=None,
+def plain_state(setup, fam: EnergyFamily | None, work: float, *, mean_pressure=None, penetration=None,
                 m: int | None = None) -> AdhesiveState:
     """The non-adhesive solve of the scene at the load or approach asked, for a state whose work of adhesion the
     energy method does not resolve (:func:`unresolved_work`) or is zero.
@@ -162,16 +161,16 @@ def plain_state(setup, fam: EnergyFamily, work: float, *, mean_pressure=None, pe
                 f"rate of its disc's growth step, {least:.4g}): solved without adhesion; w would change the load by "
                 f"about {change:.2g} of it here (a finer grid resolves it, or a cohesive model)")
         if change > resolution.THRESHOLD:
-            warnings.warn(resolution.ResolutionWarning(f"solve: {note}"), stacklevel=4)
+            resolution.warn(f"solve: {note}", stacklevel=7)  # at the caller of solve
     p = state.pressure
     return AdhesiveState(**vars(state), repulsive_pressure=np.maximum(p, 0.0), in_contact=p > 0, notes=(note,))
 
 
 def _run_energy(setup, adhesion: Adhesion, mean_pressure, penetration) -> AdhesiveState:
-    fam = family(setup)
     w = adhesion.work
     if w == 0 and (penetration is not None or mean_pressure >= 0):  # an Adhesion of zero work models nothing
-        return plain_state(setup, fam, w, mean_pressure=mean_pressure, penetration=penetration)
+        return plain_state(setup, None, w, mean_pressure=mean_pressure, penetration=penetration)
+    fam = family(setup)
     if penetration is not None:
         minima = fam.stable_domains(penetration, w)
         if fam.beyond(int(minima[-1])):  # the largest domain is stable: a larger one may be too, and lower

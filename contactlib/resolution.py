@@ -339,6 +339,13 @@ def report(resolutions, *, where: str, guarantee: bool = False, stacklevel: int 
     return w
 
 
+def warn(message: str, *, stacklevel: int = 3) -> None:
+    """A :class:`ResolutionWarning` of its own (no measure: e.g. a work of adhesion below the energy method's
+    resolution), said as :func:`report` says one: not inside :func:`recording`, where the answer's attrs hold it."""
+    if _RECORDER.get() is None:
+        warnings.warn(ResolutionWarning(message), stacklevel=stacklevel + 1)
+
+
 def guard(ds, values: np.ndarray, lengths, *, periodic: bool, contact=None, where: str, guarantee: bool = False,
           stacklevel: int = 4) -> Resolution | None:
     """Measure a solved scene (:func:`of_scene`; a cohesive law's process zone from ``ds.attrs``, where

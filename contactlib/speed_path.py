@@ -14,7 +14,7 @@ transition (zeta 3e-3..0.3) the pressure moves 30-40 % between neighbouring spee
 area falls from 9 % to 1.2 %), no prediction is within 25 % there, and each speed still takes 6-9 contact-set
 updates and 28-47 iterations: that is where the iterations of a sweep go. Every solve reaches the tolerance asked
 (a warm start changes the iterations, not the answer). Within :func:`solve_speeds` what does not depend on the
-speed is built once (:func:`.bodies.reusing_kernels`, :func:`.analysis.friction.reusing_slopes`).
+speed is built once (:func:`.bodies.reusing_kernels`; ``mu_a`` comes from each speed's own displacement).
 """
 
 from __future__ import annotations
@@ -27,7 +27,6 @@ import xarray as xr
 
 from .contact import solve
 from .resolution import recording, report, worst
-from .analysis.friction import reusing_slopes
 from .bodies import reusing_kernels
 from .solvers.recycle import recycling
 from .solvers.state import dot
@@ -111,7 +110,7 @@ def solve_speeds(heights, sliding_velocities, *, recycle: bool = False, **kwargs
     if not sliding_velocities:
         raise ValueError("sliding_velocities is empty: give at least one velocity")
     speeds, pressures, out = [], [], []
-    with recycling() if recycle else contextlib.nullcontext(), reusing_slopes(), reusing_kernels(), \
+    with recycling() if recycle else contextlib.nullcontext(), reusing_kernels(), \
             recording() as seen:  # one resolution warning for the whole path, below
         for velocity in sliding_velocities:
             speed = float(np.linalg.norm(np.atleast_1d(np.asarray(velocity, dtype=float))))

@@ -7,15 +7,16 @@ memory alone would give (:mod:`contactlib.hereditary`: the rule, its order, its 
 surface moves along ``path`` by a phase factor on its spectrum, ``h(x - X(t))``: no re-gridding. Per step:
 one contact solve, one convolution for the memory, one transform per Prony branch for the dissipated
 power, one transform pair per axis for the slopes, and with a path one inverse transform for the heights. Memory
-holds one field
-per Prony branch and a few more, whatever the number of steps; fields are kept at the times asked for.
+holds one field per Prony branch and a few more, whatever the number of steps; fields are kept at the times asked
+for.
 
 Friction here is the interlocking part only (the pressure's asymmetry, no Coulomb traction): the
 tangential force per unit area the rigid surface needs to move, ``tangential_force = -mean(p grad h)``
-[pressure] (the indenter's work per unit slide, which the steps' dissipated energy balances; :func:`contactlib.solve`
-takes the steady slide's from the deformed surface, the operator's own dissipation, within the discretisation
-of each other: 2.3 % at 8 points per shortest wavelength), and ``friction_coefficient_interlocking`` its component along the motion over the mean
-pressure (:func:`contactlib.analysis.interlocking_friction`).
+[pressure] (the indenter's work per unit slide, which the steps' dissipated energy balances;
+:func:`contactlib.solve` takes the steady slide's from the deformed surface, the operator's own dissipation, within
+the discretisation of each other: 2.3 % at 8 points per shortest wavelength), and
+``friction_coefficient_interlocking`` its component along the motion over the mean pressure
+(:func:`contactlib.analysis.interlocking_friction`).
 """
 
 from __future__ import annotations
@@ -183,8 +184,15 @@ def solve_transient(
                             status=f"interrupted after {record.done} of {n} steps")
         raise TransientInterrupted(ds.attrs["status"], ds) from None
     ds = record.dataset(start, units=(length_unit, pressure_unit, time_unit), status="completed")
-    _check_relaxed_limit(ds, stepper, times, loads, positions, control, step)
-    guard_stepper(ds, stepper, where="solve_transient")
+    guard_stepper(ds, stepper, where="solve_transient")  # on the last step's contact, before the relaxed solve
+    try:
+        _check_relaxed_limit(ds, stepper, times, loads, positions, control, step)
+    except ConvergenceError as err:  # the relaxed solve itself failed: the finished series still comes back
+        if err.dataset is ds:
+            raise
+        ds.attrs["converged"] = 0
+        ds.attrs["status"] = f"the relaxed solve of the limit check failed: {err}"
+        raise with_dataset(err, str(ds.attrs["status"]), ds) from err
     return ds
 
 
@@ -198,7 +206,11 @@ def _check_relaxed_limit(ds, stepper, times, loads, positions, control, last) ->
     if memory is None:
         ds.attrs["invariants_checked"] = checked
         return
-    relaxed = stepper._solve(stepper.material.E0, None, loads[-1], control, positions[-1])
+    kept = stepper.pressure, stepper.previous  # the relaxed solve is a check, not a step: the stepper's state stays
+    try:
+        relaxed = stepper._solve(stepper.material.E0, None, loads[-1], control, positions[-1])
+    finally:
+        stepper.pressure, stepper.previous = kept
     key = "penetration" if control == "mean_pressure" else "mean_pressure"  # the response to the held control
     scale = height_scale(stepper.values) if key == "penetration" else abs(relaxed[key]) or 1.0
     check = check_relaxed_limit(last[key], relaxed[key], tol=stepper.tol, scale=scale, memory_left=memory)

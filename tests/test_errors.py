@@ -128,15 +128,16 @@ def test_non_convergence_raises_with_residual_and_partial_dataset(heights):
 @pytest.mark.parametrize("call, match", [
     (lambda h: contactlib.analysis.contact_area_fraction(np.full((8, 8), np.nan)), "pressure must be"),
     (lambda h: contactlib.analysis.contact_clusters(np.ones((8, 8)), element_area=-1.0), "element_area"),
-    (lambda h: contactlib.analysis.anisotropy_tensor(h.values, 0.1, 0.5), "holds no wavevector"),
-    (lambda h: contactlib.analysis.anisotropy_tensor(h.values, 1.0, 4.0, n_theta=0), "n_theta"),
-    (lambda h: contactlib.analysis.fit_hurst(h.values, q_min=8, q_max=2), "q_min < q_max"),
-    (lambda h: contactlib.analysis.psd(h.values, bins=-1), "bins"),
-    (lambda h: contactlib.analysis.rms_slope(np.full((8, 8), np.nan)), "NaN"),
+    (lambda h: contactlib.analysis.anisotropy_tensor(h.values, 0.1, 0.5, length=1.0), "holds no wavevector"),
+    (lambda h: contactlib.analysis.anisotropy_tensor(h.values, 1.0, 4.0, n_theta=0, length=1.0), "n_theta"),
+    (lambda h: contactlib.analysis.fit_hurst(h.values, q_min=8, q_max=2, length=1.0), "q_min < q_max"),
+    (lambda h: contactlib.analysis.psd(h.values, bins=-1, length=1.0), "bins"),
+    (lambda h: contactlib.analysis.rms_slope(np.full((8, 8), np.nan), length=1.0), "NaN"),
     (lambda h: contactlib.analysis.directional_slope(h.values, lengths=-1.0), "lengths"),
-    (lambda h: contactlib.analysis.dissipated_power(h.values, material=1.0, sliding_velocity=(1.0, 0.0)), "material"),
+    (lambda h: contactlib.analysis.dissipated_power(h.values, material=1.0, sliding_velocity=(1.0, 0.0),
+                                                    length=1.0), "material"),
     (lambda h: contactlib.analysis.dissipated_power(h.values, material=contactlib.Elastic(1.0, 0.3),
-                                                    sliding_velocity=(1.0, 0.0, 0.0)), "sliding_velocity"),
+                                                    sliding_velocity=(1.0, 0.0, 0.0), length=1.0), "sliding_velocity"),
 ])
 def test_bad_analysis_input_names_the_parameter(heights, call, match):
     """NaN pressures counted as out of contact (area 0), a band with no modes gave a plausible theta_d, negative
@@ -316,6 +317,23 @@ def test_a_bare_array_needs_its_window(call):
     every entry point."""
     with pytest.raises(ValueError, match="length: heights given as a bare array"):
         call(_bare(16)[1])
+
+
+@pytest.mark.parametrize("measure", [
+    lambda v: contactlib.analysis.rms_slope(v),
+    lambda v: contactlib.analysis.psd(v),
+    lambda v: contactlib.analysis.fit_hurst(v, q_min=1, q_max=4),
+    lambda v: contactlib.analysis.anisotropy_tensor(v, 1, 4),
+    lambda v: contactlib.analysis.dissipated_power(v, material=contactlib.Elastic(1.0, 0.3),
+                                                   sliding_velocity=(1.0, 0.0)),
+])
+def test_an_analysis_of_a_bare_array_needs_its_window(measure):
+    """The analysis functions took a bare array on a 1 m window too: the rms slope of micrometre heights on a 0.1 mm
+    window came out 1e4 times too small. Refused by name; with ``length`` it is the DataArray's."""
+    h, values = _bare(16)
+    with pytest.raises(ValueError, match="length: a field given as a bare array"):
+        measure(values)
+    assert contactlib.analysis.rms_slope(values, length=1e-4) == contactlib.analysis.rms_slope(h)
 
 
 def test_a_bare_array_with_its_length_is_its_dataarray():

@@ -23,8 +23,10 @@ def _values_and_grid(field, length=None) -> tuple[np.ndarray, Grid]:
             length = _window_of(field)  # evenly spaced coordinates, as solve reads them
     else:
         values = real_values(field, "field")
-        if length is None:
-            length = 1.0
+        if length is None:  # no default window: a 1 m one gave micrometre surfaces a slope a million times too small
+            raise ValueError(f"length: a field given as a bare array (shape {values.shape}) carries no window size: "
+                             "pass length= (the window [length], one number or one per axis), or give a DataArray "
+                             "whose coordinates carry it")
     check_field(values, "field")
     lengths = tuple(float(v) for v in np.broadcast_to(np.asarray(length, dtype=float), (values.ndim,)))
     if not all(np.isfinite(v) and v > 0 for v in lengths):

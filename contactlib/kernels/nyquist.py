@@ -7,13 +7,13 @@ an odd part (the normal-tangential coupling ``c (q . s)/|q|``, the viscoelastic 
 products ``q_x q_y / |q|^2``, the derivative ``i q . V``) has two, and taking numpy's sign picks one. The mirror
 ``x -> -x`` maps the Nyquist mode onto itself, so a kernel evaluated at one sign is not the mirror of the kernel
 evaluated at the other: a 2D scene mirrored across the sliding direction (or along it, the sliding reversed) then
-differed from the mirrored answer by 3-4e-4 of the peak pressure (issue 38, item 4). The only value that every
-mirror maps onto itself is the mean over the two signs, :func:`even_on_nyquist`: an odd part is zero there (as
-:func:`contactlib.analysis.directional_slope` zeroes the derivative), an even part unchanged. In 1D the Nyquist
-mode is its own conjugate, so the inverse real transform already dropped the imaginary (odd) part; in 2D the
-Nyquist row of the ``fftfreq`` axis and column of the ``rfftfreq`` one carry modes that are not, and that is where
-the mirror broke. The last axis's Nyquist column holds ``(i, n/2)`` and ``(-i, n/2)``, one mode and its conjugate:
-made even, the kernel gives them conjugate values, as a real operator must (taken at numpy's sign it did not, and
+differed from the mirrored answer by 3-4e-4 of the peak pressure (issue 38, item 4; 2.8-2.9e-4 on the scenes
+below). The only value that every mirror maps onto itself is the mean over the two signs,
+:func:`even_on_nyquist`: an odd part is zero there (as :func:`contactlib.analysis.directional_slope` zeroes the
+derivative), an even part unchanged. In 1D the Nyquist mode is its own conjugate, so the inverse real transform
+already dropped the imaginary (odd) part; in 2D the Nyquist row of the ``fftfreq`` axis and column of the
+``rfftfreq`` one carry modes that are not, and that is where the mirror broke. The last axis's Nyquist column
+holds ``(i, n/2)`` and ``(-i, n/2)``, one mode and its conjugate: made even, the kernel gives them conjugate values, as a real operator must (taken at numpy's sign it did not, and
 Douglas-Rachford stagnated at 2e-5 on a viscoelastic slide off the grid's axes). Odd lengths have no Nyquist mode:
 nothing changes (the mirrors agreed there to round-off before).
 

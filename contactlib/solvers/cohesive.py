@@ -33,7 +33,7 @@ Two methods, tried in this order:
    continuation in the range (:data:`RANGES`, from its own start), and if that stalls too, from the
    non-adhesive state by continuation in the work of adhesion (``w / 16`` first, doubled after each
    converged stage, bisected back after a failed one: :func:`_continuation`). All Newton solves of one solve
-   share one bound on their GMRES iterations (:data:`NEWTON_WORK`), so that a failure comes back in seconds.
+   share one bound on their GMRES iterations (:data:`NEWTON_WORK`), so that a failure comes back in about a minute, not many.
 
 A solve that does not meet ``tol`` comes back ``converged=False``. The residual is scale-free: the mean
 ``|phi| / c``, the interpenetration and the repulsive traction's weighted mean gap (``sum |p_r| |g| / sum |p_r|``,
@@ -193,11 +193,11 @@ def solve_cohesive(
     method = "cohesive-frozen-traction"
     spent = [0, 0]  # Newton steps and GMRES iterations of every Newton solve: the failed ones' are reported too
 
-    krylov = max(NEWTON_WORK // heights.size, NEWTON_KRYLOV_FLOOR)
+    krylov_budget = max(NEWTON_WORK // heights.size, NEWTON_KRYLOV_FLOOR)
 
     def newton(law, p, delta):  # every Newton solve draws on one bound of GMRES iterations
         solved = CohesiveNewton(operator, heights, law, mean_pressure, penetration, tol, max_iter,
-                                krylov=krylov - spent[1])(p, delta)
+                                krylov=krylov_budget - spent[1])(p, delta)
         spent[0], spent[1] = spent[0] + solved[4], spent[1] + solved[5]
         return solved
 

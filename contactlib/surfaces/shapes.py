@@ -85,8 +85,9 @@ def spheres(n: int, *, length: float = 1.0, radius, summit_height=None, centers=
 
     Either a square ``lattice`` of ``lattice x lattice`` asperities, ``count`` asperities at
     uniformly random positions, or explicit ``centers`` (array ``(k, dim)`` [length]).
-    Summit heights [length] are ``summit_height`` (one value or one per asperity; default None:
-    :data:`SUMMIT_FRACTION` of each asperity's radius) plus Gaussian scatter of std ``height_std``;
+    Summit heights [length] are ``summit_height`` (one value or one per asperity; default None: 0 with scatter,
+    about which the summits scatter as before, and :data:`SUMMIT_FRACTION` of each asperity's radius without, where
+    0 left no cap above the base) plus Gaussian scatter of std ``height_std``;
     ``radius`` may be one value or one per asperity. Each cap is the exact sphere
     ``z_k - R_k + sqrt(R_k^2 - r^2)`` (nearest periodic image), truncated at the base 0.
 
@@ -124,7 +125,10 @@ def spheres(n: int, *, length: float = 1.0, radius, summit_height=None, centers=
     radii = _per_asperity("radius", radius, k)
     if not np.all(radii > 0):
         raise ValueError("radius must be finite and > 0")
-    summits = SUMMIT_FRACTION * radii if summit_height is None else _per_asperity("summit_height", summit_height, k)
+    if summit_height is None:  # scattered summits about the base, as before; without scatter, caps of a tenth R
+        summits = np.zeros(k) if height_std > 0 else SUMMIT_FRACTION * radii
+    else:
+        summits = _per_asperity("summit_height", summit_height, k)
     tops = summits + height_std * rng.standard_normal(k)
     if not np.any(tops > 0):
         raise ValueError(f"summit_height: no asperity rises above the base (summits {np.max(tops):.4g} at the "
