@@ -13,9 +13,10 @@ below). The only value that every mirror maps onto itself is the mean over the t
 derivative), an even part unchanged. In 1D the Nyquist mode is its own conjugate, so the inverse real transform
 already dropped the imaginary (odd) part; in 2D the Nyquist row of the ``fftfreq`` axis and column of the
 ``rfftfreq`` one carry modes that are not, and that is where the mirror broke. The last axis's Nyquist column
-holds ``(i, n/2)`` and ``(-i, n/2)``, one mode and its conjugate: made even, the kernel gives them conjugate values, as a real operator must (taken at numpy's sign it did not, and
-Douglas-Rachford stagnated at 2e-5 on a viscoelastic slide off the grid's axes). Odd lengths have no Nyquist mode:
-nothing changes (the mirrors agreed there to round-off before).
+holds ``(i, n/2)`` and ``(-i, n/2)``, one mode and its conjugate: made even, the kernel gives them conjugate
+values, as a real operator must (taken at numpy's sign it did not, and Douglas-Rachford stagnated at 2e-5 on a
+viscoelastic slide off the grid's axes). Odd lengths have no Nyquist mode: nothing changes (the mirrors agreed there
+to round-off before).
 
 Measured (128^2, tol 1e-10; a confined layer h = 0.05, nu = 0.3, mu = 0.5, and a standard linear solid E_inf/E0 =
 10 at V tau = 0.05): both mirrors from 2.8e-4 of the peak pressure to 2e-15 and 7e-15.

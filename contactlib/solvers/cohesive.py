@@ -33,7 +33,8 @@ Two methods, tried in this order:
    continuation in the range (:data:`RANGES`, from its own start), and if that stalls too, from the
    non-adhesive state by continuation in the work of adhesion (``w / 16`` first, doubled after each
    converged stage, bisected back after a failed one: :func:`_continuation`). All Newton solves of one solve
-   share one bound on their GMRES iterations (:data:`NEWTON_WORK`), so that a failure comes back in about a minute, not many.
+   share one bound on their GMRES iterations (:data:`NEWTON_WORK`), so that a failure comes back in about a minute,
+   not many.
 
 A solve that does not meet ``tol`` comes back ``converged=False``. The residual is scale-free: the mean
 ``|phi| / c``, the interpenetration and the repulsive traction's weighted mean gap (``sum |p_r| |g| / sum |p_r|``,
