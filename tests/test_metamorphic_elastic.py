@@ -18,11 +18,12 @@ either side, so only such points may differ (:func:`assert_same_contact`).
 
 import numpy as np
 import pytest
-from hypothesis import HealthCheck, given, note, settings
+from hypothesis import given, note, settings
 from hypothesis import strategies as st
 
 import contactlib
 from contactlib import surfaces
+from metamorphic import FAST, budget
 
 # The resolution guard warns on coarse random scenes. The properties hold on any grid, so they are not
 # about resolution and its warning is filtered here.
@@ -31,12 +32,6 @@ pytestmark = pytest.mark.filterwarnings(f"ignore::{contactlib.ResolutionWarning.
 TOL = 1e-10
 PRESSURE_RTOL = 1e3 * TOL  # of the peak pressure: (q_max / q_rms) TOL < n TOL, n <= 512 (module docstring)
 GAP_RTOL = 1e3 * TOL  # of the height range
-FAST = dict(suppress_health_check=[HealthCheck.too_slow])
-
-
-def budget(examples: int) -> int:
-    """``examples`` at the default profile's 100 examples, scaled with the loaded profile (``thorough``: 10x)."""
-    return max(1, examples * settings().max_examples // 100)
 
 
 # --- scenes ----------------------------------------------------------------------------------------------

@@ -9,7 +9,7 @@ import math
 
 import numpy as np
 import pytest
-from hypothesis import HealthCheck, given, note, settings
+from hypothesis import given, note, settings
 from hypothesis import strategies as st
 
 import contactlib
@@ -19,28 +19,10 @@ from contactlib.analysis import statistics
 from contactlib.kernels.layer import zero_mode_compliance
 from contactlib.kernels.tensor import surface_green_tensor
 from contactlib.reference import hertz
+from metamorphic import FAST, Scene, budget
 
 pytestmark = [pytest.mark.filterwarnings(f"ignore::{contactlib.ResolutionWarning.__module__}.ResolutionWarning"),
               pytest.mark.filterwarnings("ignore::contactlib.TimeStepWarning")]
-
-FAST = dict(suppress_health_check=[HealthCheck.too_slow])
-
-
-def budget(examples: int) -> int:
-    """``examples`` at the default profile's 100 examples, scaled with the loaded profile (``thorough``: 10x)."""
-    return max(1, examples * settings().max_examples // 100)
-
-
-class Scene(tuple):
-    """A drawn scene, printed by its parameters (a falsifying example then reads as a recipe, not an array)."""
-
-    def __new__(cls, items, description):
-        self = super().__new__(cls, items)
-        self.description = description
-        return self
-
-    def __repr__(self):
-        return f"Scene({self.description})"
 
 
 # --- adhesion as the work vanishes --------------------------------------------------------------------------

@@ -15,34 +15,17 @@ modulus. The solution of the linear problem moves in proportion, so the bound is
 
 import numpy as np
 import pytest
-from hypothesis import HealthCheck, given, note, reject, settings
+from hypothesis import given, note, reject, settings
 from hypothesis import strategies as st
 
 import contactlib
 from contactlib import surfaces
+from metamorphic import FAST, Scene, budget
 
 pytestmark = pytest.mark.filterwarnings(f"ignore::{contactlib.ResolutionWarning.__module__}.ResolutionWarning")
 
 TOL = 1e-10
 PRESSURE_RTOL = 1e3 * TOL
-FAST = dict(suppress_health_check=[HealthCheck.too_slow])
-
-
-def budget(examples: int) -> int:
-    """``examples`` at the default profile's 100 examples, scaled with the loaded profile (``thorough``: 10x)."""
-    return max(1, examples * settings().max_examples // 100)
-
-
-class Scene(tuple):
-    """A drawn scene, printed by its parameters (a falsifying example then reads as a recipe, not an array)."""
-
-    def __new__(cls, items, description):
-        self = super().__new__(cls, items)
-        self.description = description
-        return self
-
-    def __repr__(self):
-        return f"Scene({self.description})"
 
 
 @st.composite
