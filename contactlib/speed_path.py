@@ -39,8 +39,8 @@ by about 1.4-1.6 per step of 0.2 decade, the high-speed end decays by 0.62)."""
 
 def predict_pressure(speeds: Sequence[float], pressures: Sequence[np.ndarray], speed: float) -> np.ndarray | None:
     """The pressure [pressure] expected at ``speed`` from the answers ``pressures`` at ``speeds`` [length/time,
-    magnitudes > 0], clipped at zero; the last answer when there is one answer or the last two speeds coincide;
-    None with none.
+    magnitudes > 0], clipped at zero; the last answer when there is one answer, the last two speeds coincide (to
+    1e-9 in ``log(speed)``) or the extrapolation overflows; None with none.
 
     With three answers equally spaced in ``log(speed)``, the changes between them are taken to grow or decay
     geometrically, by the least-squares ratio ``r = <d1, d2> / <d2, d2>`` (``d1`` the last change, ``d2`` the one
@@ -64,6 +64,8 @@ def predict_pressure(speeds: Sequence[float], pressures: Sequence[np.ndarray], s
             raise ValueError(f"{name}: a speed magnitude must be finite and > 0 for the prediction, got {value!r}")
     logs = np.log(np.asarray(speeds[-3:], dtype=float))
     spacing = logs[-1] - logs[-2]
+    if abs(spacing) <= 1e-9:  # speeds a round-off apart: their secant is noise over nothing (it overflowed to NaN)
+        return last.copy()
     step = (np.log(speed) - logs[-1]) / spacing
     change = last - np.asarray(pressures[-2], dtype=float)
     if len(logs) == 3 and abs(logs[1] - logs[0] - spacing) <= 1e-6 * abs(spacing):
@@ -72,7 +74,8 @@ def predict_pressure(speeds: Sequence[float], pressures: Sequence[np.ndarray], s
         ratio = float(np.clip(dot(change.ravel(), before) / norm, 0.0, RATIO_MAX)) if norm > 0 else 1.0
         if abs(ratio - 1.0) > 1e-12:
             step = ratio * (1.0 - ratio**step) / (1.0 - ratio)
-    return np.maximum(last + step * change, 0.0)
+    predicted = np.maximum(last + step * change, 0.0)
+    return predicted if np.all(np.isfinite(predicted)) else last.copy()  # a ratio's power can overflow far away
 
 
 def solve_speeds(heights, sliding_velocities, *, recycle: bool = False, **kwargs) -> list[xr.Dataset]:

@@ -19,6 +19,19 @@ def test_prediction_is_the_secant_in_log_speed_clipped_at_zero():
         contactlib.predict_pressure([1.0, 10.0], [a, b], 0.0)
 
 
+def test_prediction_from_speeds_a_round_off_apart_is_the_last_answer():
+    """Two speeds 5e-16 apart in log(speed) made the secant's step 4.6e15 spacings long: the start overflowed to NaN
+    and solve_speeds raised on its own warm start (found by the metamorphic suite's thorough profile)."""
+    a, b = np.array([1.0, 2.0, 0.5]), np.array([1.0 + 1e-15, 2.0, 0.0])
+    speeds = [1.0, 10**2.220446049250313e-16]
+    assert np.array_equal(contactlib.predict_pressure(speeds, [a, b], 10.0), b)
+    h = contactlib.surfaces.self_affine(48, hurst=1, q_roll=1, q_cutoff=2, rms_slope=0.1, seed=0, dim=1)
+    v0 = 1 / (2 * np.pi)
+    path = contactlib.solve_speeds(h, [v0, speeds[1] * v0, 10 * v0], material=SLS, mean_pressure=0.0125, tol=1e-10)
+    alone = contactlib.solve(h, material=SLS, mean_pressure=0.0125, tol=1e-10, sliding_velocity=10 * v0)
+    assert np.abs(path[-1].pressure.values - alone.pressure.values).max() <= 1e-7 * float(alone.pressure.max())
+
+
 def test_prediction_from_three_speeds_extrapolates_geometric_changes():
     """Answers whose changes shrink (or grow) by a constant ratio per step in log speed are predicted exactly,
     one step or two ahead; unequal spacing falls back to the secant."""
