@@ -1,8 +1,8 @@
 """Adhesive solves: contactlib against tamaas 2.9 on the same scene and tolerance, and adhesive against
 non-adhesive contactlib solves.
 
-Scene: a periodic self-affine surface (Hurst 0.8, rolloff 4, cutoff 32 wavelengths, rms slope 0.1) on
-``N x N``, ``E = 1``, ``nu = 0``, mean pressure 0.01, work 1e-5, range 1e-3 (process zone 5 elements at
+Scene (:func:`contactlib.testing.adhesive_rough_scene`, that of the tamaas test): a periodic self-affine surface
+(Hurst 0.8, rolloff 4, cutoff 32 wavelengths, rms slope 0.1) on ``N x N``, ``E = 1``, ``nu = 0``, mean pressure 0.01, work 1e-5, range 1e-3 (process zone 5 elements at
 N = 256). Both laws. Tolerances: tamaas 1e-10 on its own residual, contactlib 1e-8 on its scale-free one
 (the tamaas test agrees within 1e-3 in area and mean gap at these). Prints medians over ``--repeats``
 runs (a warm-up first; tamaas' from ``--peer-warm-up-below`` on is not warmed up: minutes a solve), the ratio
@@ -11,24 +11,20 @@ the adhesive solve's CG iterations and frozen-traction rounds against the plain 
 and the differences in area and mean gap. ``adh/plain cpu`` is the same ratio in process time (medians of the
 same pairs): on a machine shared with other jobs it moves less than the wall-clock one.
 
-    python benchmarks/bench_adhesion.py --sizes 256 512 1024 --repeats 3
+    python -m benchmarks.bench_adhesion --sizes 256 512 1024 --repeats 3
 """
 
 from __future__ import annotations
 
 import argparse
 import statistics
-import sys
 import time
-from pathlib import Path
 
+import contactlib
+from contactlib.testing import adhesive_rough_scene
+from contactlib.testing import solve_tamaas_adhesive as solve_tamaas
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-from _timing import timed  # noqa: E402
-import contactlib  # noqa: E402
-from tamaas_adhesion import solve_tamaas  # noqa: E402
-
-WORK, RANGE, LOAD = 1e-5, 1e-3, 0.01
+from .common import timed
 
 
 def main(argv=None):
@@ -45,23 +41,24 @@ def main(argv=None):
           f"{'adh/plain cpu':>13} "
           f"{'its':>4} {'rounds':>6} {'plain its':>9} {'method':>15} {'d area':>8} {'d gap/gap':>9}")
     for n in args.sizes:
-        h = contactlib.surfaces.self_affine(n, hurst=0.8, q_roll=4, q_cutoff=32, rms_slope=0.1, seed=1)
         for model in args.models:
-            law = contactlib.Adhesion(work=WORK, range=RANGE, model=model)
+            h, scene = adhesive_rough_scene(n, model=model)
+            law = scene["adhesion"]
+            work, range_, load = law.work, law.range, scene["mean_pressure"]
             if args.peer_repeats == 0:
                 t_peer, peer = float("nan"), {"contact_area": float("nan"), "mean_gap": float("nan")}
             else:
-                t_peer, peer = timed(lambda: solve_tamaas(h.values, E=1.0, nu=0.0, work=WORK, range_=RANGE, model=model,
-                                                          mean_pressure=LOAD, tol=1e-10),
+                t_peer, peer = timed(lambda: solve_tamaas(h.values, E=1.0, nu=0.0, work=work, range_=range_, model=model,
+                                                          mean_pressure=load, tol=1e-10),
                                      args.repeats if args.peer_repeats is None else args.peer_repeats,
                                      warm=n < args.peer_warm_up_below)
             # the adhesive and the plain solve interleaved, so that both see the same load on the machine
             times, plain_times, cpu, plain_cpu = [], [], [], []
             for k in range(args.repeats + 1):
                 start, start_cpu = time.perf_counter(), time.process_time()
-                ds = contactlib.solve(h, E=1.0, nu=0.0, mean_pressure=LOAD, tol=1e-8, adhesion=law)
+                ds = contactlib.solve(h, E=1.0, nu=0.0, mean_pressure=load, tol=1e-8, adhesion=law)
                 middle, middle_cpu = time.perf_counter(), time.process_time()
-                plain = contactlib.solve(h, E=1.0, nu=0.0, mean_pressure=LOAD, tol=1e-8)
+                plain = contactlib.solve(h, E=1.0, nu=0.0, mean_pressure=load, tol=1e-8)
                 if k:  # the first pair is the warm-up
                     times.append(middle - start)
                     plain_times.append(time.perf_counter() - middle)

@@ -22,7 +22,7 @@ jkr_extrapolation`) against JKR, next to the same extrapolation of Maugis' close
 own error); and for all the lambdas a table by radius, with the radius error at each load beside the load
 error at each radius.
 
-    python benchmarks/bench_adhesion_sphere.py --lambdas 1.5 2 2.5 --n 256 --window 0.576
+    python -m benchmarks.bench_adhesion_sphere --lambdas 1.5 2 2.5 --n 256 --window 0.576
 """
 
 from __future__ import annotations

@@ -6,7 +6,7 @@ consecutive tasks on a worker plus task time outside the point function), ``idle
 slot is not solving (wall x workers / points - mean solve; includes the load imbalance of the last tasks).
 Targets: speed-up >= 1.8, scheduling overhead < 5 % of the median solve.
 
-    python benchmarks/bench_dask.py [--repeats 3] [--n 256]
+    python -m benchmarks.bench_dask [--repeats 3] [--n 256]
 """
 
 from __future__ import annotations

@@ -7,15 +7,10 @@ the unpreconditioned primal :func:`contactlib.solvers.solve_polonsky_keer`, at `
 pressure fields are compared with a tighter dual solve. Times are medians of ``--repeats`` after a
 warm-up; both solvers use the same planned FFTs.
 
-    python benchmarks/bench_displacement.py --sizes 256 512 1024 --json results/bench_displacement.json
+    python -m benchmarks.bench_displacement --sizes 256 512 1024 --json results/bench_displacement.json
 """
 
 from __future__ import annotations
-
-import os
-
-for _var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
-    os.environ.setdefault(_var, "1")
 
 import argparse
 import json
@@ -29,8 +24,7 @@ from contactlib.grid import Grid
 from contactlib.operators import Compliance
 from contactlib.solvers import solve_periodic_displacement, solve_polonsky_keer
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-from _timing import timed  # noqa: E402
+from .common import timed
 
 
 def main(argv=None) -> int:

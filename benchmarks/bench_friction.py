@@ -35,30 +35,23 @@ load, or the uniform compression that a thick confined layer keeps when it is re
 half-space, moves them by up to +-30 % (the answer does not move). The per-iteration columns
 separate that from the cost of an iteration.
 
-Run ``python benchmarks/bench_friction.py --help``.
+Run ``python -m benchmarks.bench_friction --help``.
 """
 
 from __future__ import annotations
 
-import os
-
-for _var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
-    os.environ.setdefault(_var, "1")  # no BLAS/OpenMP threads spinning against FFTW
-
 import argparse
-import json
 import math
 import sys
 import time
-import warnings
 from pathlib import Path
 
 import numpy as np
 
 import contactlib
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-from bench_solver import host_info  # noqa: E402
+from .common import (ContactMechanicsPeer, calibrate_load, contactmechanics_solve, dist_version, host_info, ladder,
+                     rel_l2, self_affine_surface, write_json as write_payload)
 
 MAX_REPEATS = 15
 """Most timed solves of one configuration (reached only by solves far shorter than ``--min-time``)."""
@@ -110,10 +103,7 @@ class Bench:
 
     def surface(self, dim: int, n: int):
         if (dim, n) not in self.surfaces:
-            a = self.args
-            self.surfaces[dim, n] = contactlib.surfaces.self_affine(
-                n, hurst=a.hurst, q_roll=a.q_roll, q_cutoff=n * a.cutoff_fraction, rms_slope=a.rms_slope, seed=a.seed,
-                dim=dim)
+            self.surfaces[dim, n] = self_affine_surface(n, self.args, dim=dim)
         return self.surfaces[dim, n]
 
     def load(self, dim: int, n: int, nu: float, q0h, target: float, base: str = "confined") -> tuple[float, float]:
@@ -130,15 +120,7 @@ class Bench:
             return solve_once(heights, p=p, nu=nu, q0h=q0h, mu=0.0, tol=a.calibration_tol, args=a,
                               base=base)[0]["contact_area"]
 
-        A, slope, prev = area(p), 1.0, None
-        for _ in range(a.calibration_steps):
-            if abs(A / target - 1) <= a.calibration_rtol or A <= 0 or A >= 1:
-                break
-            prev = (p, A)
-            p = math.exp(math.log(p) + (math.log(target) - math.log(A)) / slope)
-            A = area(p)
-            if 0 < A < 1 and A != prev[1]:
-                slope = min(max((math.log(A) - math.log(prev[1])) / (math.log(p) - math.log(prev[0])), 0.1), 2.0)
+        p, A = calibrate_load(area, target, p, rtol=a.calibration_rtol, steps=a.calibration_steps)
         self.loads[key] = (p, A)
         return p, A
 
@@ -283,57 +265,6 @@ def table_layer(rows, args) -> list[str]:
 
 # ------------------------------------------------------------------------ 3. ContactMechanics
 
-def cm_available() -> bool:
-    try:
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore")
-            import ContactMechanics  # noqa: F401
-            import SurfaceTopography  # noqa: F401
-    except Exception:
-        return False
-    return True
-
-
-def dist_version(name: str) -> str:
-    """The installed distribution's version. (``ContactMechanics.__version__`` comes from
-    DiscoverVersion, which reports the git revision of the *current directory* when it is a
-    repository: run from this checkout, it names contactlib's commit.)"""
-    import importlib.metadata as md
-
-    try:
-        return md.version(name)
-    except md.PackageNotFoundError:
-        return "not installed"
-
-
-def cm_solve(heights: np.ndarray, *, p, E, nu, thickness, tol, max_iter) -> dict:
-    """ContactMechanics' confined layer (Carbone & Mangialardi 2008, eq. A.30) under load control.
-
-    Its conventions, read from ``FFTElasticHalfSpace.py`` and ``ConstrainedConjugateGradients.py``
-    (1.8.3): ``young`` is Young's modulus when ``poisson`` is given (``contact_modulus = young / (1 -
-    poisson**2)``; only with the default ``poisson=0`` does ``young`` act as E*); the layer exists in
-    2D only (the 1D Green's function ignores ``thickness``); ``external_force`` is the total
-    compressive force (mean pressure x area); the returned ``jac`` is the compressive-positive force
-    per node, so pressure = jac / node area; contact = jac > 0, as ours (p > 0). Tolerances as in
-    bench_solver.py: pentol = tol h_rms, forcetol = tol p A_node, thermotol = tol.
-    """
-    import ContactMechanics as cm
-    from SurfaceTopography import Topography
-
-    h = np.ascontiguousarray(heights, dtype=float)
-    node = 1.0 / h.size  # unit square
-    t0 = time.perf_counter()
-    substrate = cm.PeriodicFFTElasticHalfSpace(h.shape, E, physical_sizes=(1.0, 1.0), thickness=thickness, poisson=nu)
-    system = cm.make_system(substrate=substrate, surface=Topography(h, physical_sizes=(1.0, 1.0), periodic=True))
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")
-        sol = system.minimize_proxy(external_force=p * 1.0, pentol=tol * float(np.std(h)), forcetol=tol * p * node,
-                                    thermotol=tol, maxiter=max_iter)
-    dt = time.perf_counter() - t0
-    return {"pressure": np.asarray(sol.jac).reshape(h.shape) / node, "iterations": int(sol.nit), "seconds": dt,
-            "converged": bool(sol.success), "greens_function": np.asarray(substrate.greens_function)}
-
-
 def kernel_difference(cm_green: np.ndarray, n: int, E: float, nu: float, thickness: float) -> float:
     """Largest relative difference between ContactMechanics' Green's function (its muGrid layout is
     the transpose of numpy's rfft2) and contactlib's layer compliance, ``q = 0`` included."""
@@ -343,18 +274,6 @@ def kernel_difference(cm_green: np.ndarray, n: int, E: float, nu: float, thickne
     ours = surface_green_tensor(Grid((n, n), (1.0, 1.0)), E, nu, thickness, "confined").normal
     theirs = cm_green.real if cm_green.shape == ours.shape else cm_green.real.T
     return float(np.max(np.abs(theirs / ours - 1)))
-
-
-def ladder(start: float):
-    """Half-decade tolerances from ``start`` downwards."""
-    k = math.ceil(2 * math.log10(start) - 1e-9)
-    while k > -30:
-        yield 10 ** (k / 2)
-        k -= 1
-
-
-def rel_l2(a, ref) -> float:
-    return float(np.linalg.norm(a - ref) / np.linalg.norm(ref))
 
 
 def bench_cm(bench: Bench) -> list[dict]:
@@ -375,7 +294,8 @@ def bench_cm(bench: Bench) -> list[dict]:
                       f"(reference residual {float(ref.residual):.1e})")
             steps, chosen, last = [], None, None
             for tol in ladder(max(err_ours, 1e-14)):
-                last = cm_solve(h, p=p, E=args.E, nu=nu, thickness=th, tol=tol, max_iter=args.cm_max_iter)
+                last = contactmechanics_solve(h, mean_pressure=p, E=args.E, nu=nu, thickness=th, tol=tol,
+                                              max_iter=args.cm_max_iter)
                 e = rel_l2(last["pressure"], p_ref)
                 steps.append({"tol": tol, "pressure_error": e, "iterations": last["iterations"],
                               "time_s": last["seconds"], "converged": last["converged"]})
@@ -391,7 +311,8 @@ def bench_cm(bench: Bench) -> list[dict]:
             times = [last["seconds"]]
             if last["seconds"] <= args.single_above:
                 for _ in range(args.repeats - 1):
-                    again = cm_solve(h, p=p, E=args.E, nu=nu, thickness=th, tol=chosen, max_iter=args.cm_max_iter)
+                    again = contactmechanics_solve(h, mean_pressure=p, E=args.E, nu=nu, thickness=th, tol=chosen,
+                                                   max_iter=args.cm_max_iter)
                     times.append(again["seconds"])
             t_cm = float(np.median(times))
             c_ours, c_cm, c_ref = p_ours > 0, last["pressure"] > 0, p_ref > 0
@@ -477,11 +398,8 @@ def markdown(results: dict, info: dict, args) -> str:
 
 
 def write_json(path: Path, info: dict, args, results: dict) -> None:
-    tmp = path.with_suffix(".tmp")
-    tmp.write_text(json.dumps({"machine": info, "args": {k: (str(v) if isinstance(v, Path) else v)
-                                                          for k, v in vars(args).items()},
-                               **results}, indent=1))
-    os.replace(tmp, path)
+    write_payload(path, {"machine": info, "args": {k: (str(v) if isinstance(v, Path) else v)
+                                                   for k, v in vars(args).items()}, **results})
 
 
 def parse(argv=None):
@@ -541,7 +459,7 @@ def main(argv=None) -> int:
     bench, results = Bench(args, log), {}
     steps = [("friction", bench_friction), ("layer", bench_layer)]
     if not args.skip_cm:
-        if cm_available():
+        if ContactMechanicsPeer.available():
             steps.append(("cm", bench_cm))
         else:
             log("ContactMechanics / SurfaceTopography not importable: measurement 3 skipped")

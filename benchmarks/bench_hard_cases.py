@@ -1,6 +1,6 @@
 """Iterations, time and memory of the hard-case scenes, plus the ones too large for the test suite.
 
-The scenes are those of ``tests/test_hard_cases.py`` (imported from there, so a scene added to
+The scenes are :data:`contactlib.testing.HARD_CASES`, those of ``tests/test_hard_cases.py`` (so a scene added to
 the suite is reported here too) and, with ``--large``, a 2D self-affine surface at N = 4096
 (10 % contact, load control): time, iterations, residual and the process' peak resident memory. With
 ``--cohesive N``, issue 38's hard cohesive case on N^2 (a Maugis sphere at lambda = 5, ``paraboloid(N, length=0.25,
@@ -8,15 +8,10 @@ radius=1)``, ``E = 1, nu = 0.5``, ``work = 1e-4, range = 4e-4``, non-periodic, p
 issue's scene, its process zone 3.4 N / 512 elements) beside the plain solve of the same scene, bounded by
 ``--cohesive-timeout`` seconds (the solve is run in a child process and stopped there).
 
-    python benchmarks/bench_hard_cases.py [--large 4096] [--cohesive 512] [--json results/bench_hard_cases.json]
+    python -m benchmarks.bench_hard_cases [--large 4096] [--cohesive 512] [--json results/bench_hard_cases.json]
 """
 
 from __future__ import annotations
-
-import os
-
-for _var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
-    os.environ.setdefault(_var, "1")
 
 import argparse
 import json
@@ -28,9 +23,9 @@ from pathlib import Path
 import numpy as np
 
 import contactlib
-
-sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
-from test_hard_cases import E, NU, SCENES  # noqa: E402
+from contactlib.testing import HARD_CASE_E as E
+from contactlib.testing import HARD_CASE_NU as NU
+from contactlib.testing import HARD_CASES
 
 
 def peak_rss_mib() -> float:
@@ -95,7 +90,7 @@ def main(argv=None) -> None:
     # load the compiled sweeps
     contactlib.solve(np.ones((8, 8)) - np.eye(8), length=1.0, E=E, nu=NU, mean_pressure=0.01)
     rows = []
-    for scene in SCENES:
+    for scene in HARD_CASES:
         rows.append(run(scene.name, scene.surface(), scene.solve))
         print(f"{rows[-1]['scene']}: {rows[-1]['seconds']:.2f} s", file=sys.stderr, flush=True)
     for n in args.large:

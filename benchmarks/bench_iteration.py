@@ -9,7 +9,7 @@ that state, ``--repeats`` times (median):
   (``Compliance.iteration_transforms``);
 * the three passes over a spectrum: ``K p`` minus the heights, the preconditioner with its Parseval
   sum, and the Parseval sum ``<t, K t>``;
-* the five fused element-wise sweeps of ``contactlib.solvers._fused``, in the order the loop
+* the five fused element-wise sweeps of the solver (``contactlib.solvers``), in the order the loop
   calls them (the contact sum twice).
 
 Each part is also given in *array transfers*: how many times it must move an n-element float64
@@ -20,16 +20,11 @@ a streaming read of a grid-sized array, this is the floor that memory bandwidth 
 sweep, whatever the code. ``--threads 1 2`` repeats everything with FFTW and the sweeps on two threads
 (the streaming read too), from the same mid-solve state.
 
-Run ``python benchmarks/bench_iteration.py --help``; the sum of the parts is checked against the
+Run ``python -m benchmarks.bench_iteration --help``; the sum of the parts is checked against the
 time per iteration of a whole solve measured in the same run.
 """
 
 from __future__ import annotations
-
-import os
-
-for _var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
-    os.environ.setdefault(_var, "1")
 
 import argparse
 import json
@@ -42,14 +37,11 @@ import numpy as np
 
 import contactlib
 from contactlib import fft as cfft
-from contactlib import operators as op_module
 from contactlib.grid import Grid
 from contactlib.operators import Compliance, weighted_power_sum
-from contactlib.solvers import _fused as fz
 from contactlib.solvers import solve_polonsky_keer
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-from bench_solver import Contactlib, make_surface, pressure_for_area
+from .common import Contactlib, iteration_internals, pressure_for_area, self_affine_array, timed
 
 
 @numba.njit(cache=True, nogil=True, fastmath={"reassoc", "contract", "nsz"})
@@ -69,18 +61,11 @@ def _stream_read_parallel(a):
 
 
 def median_time(fn, repeats: int, setup=None) -> float:
-    times = []
-    for _ in range(repeats):
-        if setup is not None:
-            setup()
-        t0 = time.perf_counter()
-        fn()
-        times.append(time.perf_counter() - t0)
-    return float(np.median(times))
+    return float(timed(fn, repeats, setup=setup)[0])
 
 
 def measure(n: int, args) -> list[dict]:
-    heights = make_surface(n, args)
+    heights = self_affine_array(n, args)
     cfft.set_fft_options(threads=1)
     mean_pressure, contact = pressure_for_area(Contactlib(args.E, args.nu, 1), heights, args.contact, args)
     E_star = args.E / (1 - args.nu**2)
@@ -94,8 +79,6 @@ def measure_threads(threads: int, heights, op, mean_pressure, contact, mid, args
     """Every part, the FFT pair and a whole solve with FFTW and the sweeps on ``threads`` threads."""
     n = heights.shape[0]
     cfft.set_fft_options(threads=threads)
-    sweeps = fz.select(heights.shape)
-    numba_threads = numba.get_num_threads() if sweeps is fz.THREADED else 1
     solve_polonsky_keer(op, heights, mean_pressure=mean_pressure, tol=0.0, max_iter=2)  # plans, compiles
     # a whole solve: the time per iteration the parts must add up to
     t0 = time.perf_counter()
@@ -111,7 +94,9 @@ def measure_threads(threads: int, heights, op, mean_pressure, contact, mid, args
     r = args.repeats
     parts = {}
     with op.iteration_transforms(offset=hp) as tr:
-        ws = tr._workspace
+        parts_of = iteration_internals(tr, heights.shape)
+        ws, sweeps = parts_of.workspace, parts_of.sweeps
+        numba_threads = numba.get_num_threads() if parts_of.threaded else 1
         tr.pressure[...] = p
         parts["forward FFT"] = (median_time(lambda: ws.forward("pressure"), r), 0)
         spectrum_copy = ws.spectrum.copy()
@@ -122,11 +107,10 @@ def measure_threads(threads: int, heights, op, mean_pressure, contact, mid, args
         parts["inverse FFT"] = (median_time(lambda: ws.inverse("displacement"), r, fresh_spectrum), 0)
         rows = ws.spectrum.reshape(-1, ws.spectrum.shape[-1])
         multiplier, inverse = (m.reshape(-1, m.shape[-1]) for m in (op.multiplier, op.inverse_multiplier))
-        affine = op_module._spectrum_pass(op_module._affine_spectrum, rows)
-        scale_power = op_module._spectrum_pass(op_module._scale_and_power_sum, rows)
+        affine, scale_power = parts_of.affine_pass(rows), parts_of.scale_power_pass(rows)
         even = heights.shape[-1] % 2 == 0
         parts["K p - hp (multiply, subtract)"] = (
-            median_time(lambda: affine(rows, multiplier, tr._offset, 1.0), r, fresh_spectrum), 3.5)
+            median_time(lambda: affine(rows, multiplier, parts_of.offset, 1.0), r, fresh_spectrum), 3.5)
         parts["preconditioner (multiply, Parseval)"] = (
             median_time(lambda: scale_power(rows, inverse, even), r, fresh_spectrum), 2.5)
         parts["Parseval <t, K t>"] = (median_time(lambda: _parseval(ws.spectrum, op.multiplier, even), r), 1.5)

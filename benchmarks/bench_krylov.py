@@ -8,28 +8,23 @@ nu = 0.3 half-space, a confined incompressible layer at q0 h = 1 with mu = 1, an
 a shared machine than the wall clock) of ``--repeats`` interleaved solves, iterations (outer), and the pressure
 difference between the two non-symmetric solvers.
 
-Run ``python benchmarks/bench_krylov.py --help``.
+Run ``python -m benchmarks.bench_krylov --help``.
 """
 
 from __future__ import annotations
 
-import os
-
-for _var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
-    os.environ.setdefault(_var, "1")
-
 import argparse
+import os
 import statistics
-import sys
 import time
-from pathlib import Path
 
 import numpy as np
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-import contactlib  # noqa: E402
-from bench_viscoelastic import load_for, surface  # noqa: E402
-from contactlib.contact import _setup  # noqa: E402
+import contactlib
+
+from .common import load_for_contact as load_for
+from .common import nonsymmetric_solve, prepared_problem
+from .common import sliding_surface as surface
 
 
 def scene(h, name, P, tol):
@@ -44,10 +39,8 @@ def scene(h, name, P, tol):
         velocity = (1 / (2 * np.pi), 0.0)
 
     def make(material, friction, velocity):
-        return _setup(h, material=material, mean_pressure=P, penetration=None, periodic=True, tol=tol, max_iter=10_000,
-                      kernel="spectral", method="cg", length=None, initial_pressure=None, target_error=None,
-                      layer=layer, friction=friction, sliding_direction=0.0 if friction else None,
-                      sliding_velocity=velocity)
+        return prepared_problem(h, material=material, mean_pressure=P, tol=tol, max_iter=10_000, layer=layer,
+                                friction=friction, sliding_velocity=velocity)
     elastic = make(contactlib.Elastic(1.0, material.nu), 0.0, None)
     return elastic, make(material, friction, velocity)
 
@@ -69,7 +62,9 @@ def main(argv=None) -> int:
         P = load_for(h, target)
         for name in args.scenes:
             elastic, body = scene(h, name, P, args.tol)
-            runs = {"elastic": elastic.run, "coupled": lambda: _old(body), "new": body._krylov}
+            runs = {"elastic": lambda: nonsymmetric_solve(elastic, "dispatch"),
+                    "coupled": lambda: nonsymmetric_solve(body, "coupled"),  # the dispatch before the Newton loop
+                    "new": lambda: nonsymmetric_solve(body, "krylov")}
             for fn in runs.values():
                 fn()  # warm-up: plans
             times = {k: [] for k in runs}
@@ -88,12 +83,6 @@ def main(argv=None) -> int:
                   f"({s.outer_iterations}), {t['new'] / t['elastic']:.2f}x{'' if s.converged else ' NC'} | "
                   f"{t['new'] / t['coupled']:.2f} | {dp:.1e} | {os.getloadavg()[0]:.1f} |", flush=True)
     return 0
-
-
-def _old(setup):
-    """The dispatch before the Newton loop: the fixed point on the skew part (Douglas-Rachford if it stalls)."""
-    from contactlib.solvers import solve_coupled
-    return solve_coupled(setup._symmetric, setup.body.coupling, setup.values, **setup.solver_args)
 
 
 if __name__ == "__main__":

@@ -1,8 +1,9 @@
 """Time per iteration of load-controlled solves cut at a fixed iteration count: for comparing two
 revisions of the solver on the same machine.
 
-Run it alternately from two checkouts (``PYTHONPATH=<checkout> python benchmarks/bench_periter.py
---label <name> ...``), several rounds, and compare the medians: one process per size and thread
+Run it alternately on two checkouts' contactlib (``PYTHONPATH=<checkout>:. python -P -m benchmarks.bench_periter
+--label <name> ...`` from this repository's root: ``-P`` keeps the working directory's contactlib off the path),
+several rounds, and compare the medians: one process per size and thread
 count, a warm-up solve, then ``--repeats`` timed solves of ``--iterations`` iterations each at two
 loads (about 10 % and 74 % contact on the default surface). Prints one line per size and thread
 count: label, N, threads, milliseconds per iteration at each load.

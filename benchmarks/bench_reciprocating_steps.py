@@ -10,7 +10,7 @@ balance at the default steps over a grid of scenes (the figures behind ``transie
    as many: status, ``energy_balance`` and how far the energy moved on doubling.
 
 Self-affine surfaces (Hurst 0.8, q_roll 1, rms slope 0.1, seed 0; q_cutoff 32 for profiles, n/8 for maps) on a
-standard linear solid (tau = 1, nu = 0.5), window 1. Run ``python benchmarks/bench_reciprocating_steps.py --help``.
+standard linear solid (tau = 1, nu = 0.5), window 1. Run ``python -m benchmarks.bench_reciprocating_steps --help``.
 """
 
 from __future__ import annotations

@@ -4,15 +4,10 @@
 Each scene is solved under load control at ``--tol`` with both rules, and once tightly (tol 1e-12,
 Polonsky & Keer's rule, or the default where that stalls) as the reference of the pressure error.
 Prints a markdown table: contact fraction, iterations, time, error and status per rule.
-Run ``python benchmarks/bench_restart.py --help``.
+Run ``python -m benchmarks.bench_restart --help``.
 """
 
 from __future__ import annotations
-
-import os
-
-for _var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
-    os.environ.setdefault(_var, "1")
 
 import argparse
 import json

@@ -24,233 +24,28 @@ equal accuracy*:
   sampled every 1 ms). It includes FFTW plans/buffers and the returned fields.
 
 Peers are adapters (:class:`Peer`) sharing one interface, so adding one is a class and a line
-in :data:`PEERS`. Run ``python benchmarks/bench_solver.py --help``.
+in :data:`benchmarks.common.PEERS`. Run ``python -m benchmarks.bench_solver --help``.
 """
 
 from __future__ import annotations
 
-import os
-
-for _var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
-    os.environ.setdefault(_var, "1")  # no BLAS/OpenMP threads spinning against FFTW
-
 import argparse
-import contextlib
-import io
 import json
-import math
-import platform
 import subprocess
 import sys
 import tempfile
 import threading
 import time
-import warnings
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
 
 import numpy as np
 
-import contactlib
 from contactlib import fft as cfft
 
-
-# ----------------------------------------------------------------------------------------- peers
-
-@dataclass
-class Solution:
-    pressure: np.ndarray
-    iterations: int
-    seconds: float
-    converged: bool = True  # False: stopped by the iteration cap (``max_iter``) before its tolerance
-
-
-class Peer:
-    """One solver under test: ``solve(heights, mean_pressure, tol) -> Solution``.
-
-    ``heights`` live on the periodic unit square, higher points touch first; ``E``/``nu`` as in
-    :func:`contactlib.solve`; the returned pressure is compressive-positive on the same grid.
-    """
-
-    name = "peer"
-    tol_meaning = ""
-    fft_pairs_per_iteration = 2  # a Polonsky-Keer iteration: K p and K t
-
-    def __init__(self, E: float, nu: float, threads: int):
-        self.E, self.nu, self.threads = E, nu, threads
-
-    @staticmethod
-    def available() -> bool:
-        return True
-
-    @staticmethod
-    def version() -> str:
-        return "?"
-
-    def solve(self, heights: np.ndarray, mean_pressure: float, tol: float, *, max_iter: int = 100_000) -> Solution:
-        raise NotImplementedError
-
-
-class Contactlib(Peer):
-    name = "contactlib"
-    tol_meaning = "scale-free complementarity residual (contactlib.solvers.contact_residual)"
-    fft_pairs_per_iteration = 2.5  # K p, the preconditioner P g, and the forward transform of t (load control)
-
-    def __init__(self, E, nu, threads):
-        super().__init__(E, nu, threads)
-        cfft.set_fft_options(threads=threads)
-
-    @staticmethod
-    def version():
-        return contactlib.__version__
-
-    def solve(self, heights, mean_pressure, tol, *, max_iter=10_000):
-        t0 = time.perf_counter()
-        converged = True
-        try:
-            out = contactlib.solve(heights, E=self.E, nu=self.nu, mean_pressure=mean_pressure, tol=tol, length=1.0,
-                                   max_iter=max_iter)
-        except contactlib.ConvergenceError as exc:
-            out, converged = exc.dataset, False
-        dt = time.perf_counter() - t0
-        return Solution(out["pressure"].values, int(out["iterations"]), dt, converged)
-
-    def reference(self, heights, mean_pressure, tol, *, max_iter=3000) -> tuple[Solution, float]:
-        """The tightest solution reachable, and its residual (round-off can stall it above ``tol``)."""
-        try:
-            out = contactlib.solve(heights, E=self.E, nu=self.nu, mean_pressure=mean_pressure, tol=tol,
-                                   length=1.0, max_iter=max_iter)
-        except contactlib.ConvergenceError as exc:
-            out = exc.dataset
-        return Solution(out["pressure"].values, int(out["iterations"]), 0.0), float(out["residual"])
-
-
-@contextlib.contextmanager
-def _capture_output():
-    """Capture what C++ code writes to file descriptors 1 and 2 (tamaas logs its iterations there)."""
-    sys.stdout.flush()
-    sys.stderr.flush()
-    saved = {fd: os.dup(fd) for fd in (1, 2)}
-    buf = io.StringIO()
-    with tempfile.TemporaryFile(mode="w+") as tmp:
-        for fd in (1, 2):
-            os.dup2(tmp.fileno(), fd)
-        try:
-            with contextlib.redirect_stdout(buf), contextlib.redirect_stderr(buf):  # pybind11 redirects
-                yield buf
-        finally:
-            sys.stdout.flush()
-            sys.stderr.flush()
-            for fd, old in saved.items():
-                os.dup2(old, fd)
-                os.close(old)
-            tmp.seek(0)
-            buf.write(tmp.read())
-
-
-class Tamaas(Peer):
-    name = "tamaas"
-    tol_meaning = "tamaas PolonskyKeerRey.computeError (its own normalised complementarity)"
-
-    def __init__(self, E, nu, threads):
-        super().__init__(E, nu, threads)
-        import tamaas as tm
-
-        self.tm = tm
-        tm.initialize(threads)  # the PyPI wheel is built with the cpp backend: single-threaded anyway
-
-    @staticmethod
-    def available():
-        try:
-            import tamaas  # noqa: F401
-        except ImportError:
-            return False
-        return True
-
-    @staticmethod
-    def version():
-        import tamaas as tm
-
-        return f"{tm.__version__} (backend {tm.TamaasInfo.backend})"
-
-    def solve(self, heights, mean_pressure, tol, *, max_iter=100_000):
-        tm = self.tm
-        n = heights.shape
-        surface = np.ascontiguousarray(heights, dtype=float)
-        t0 = time.perf_counter()
-        model = tm.ModelFactory.createModel(tm.model_type.basic_2d, [1.0, 1.0], list(n))
-        model.E, model.nu = self.E, self.nu
-        solver = tm.PolonskyKeerRey(model, surface, tol, tm.PolonskyKeerRey.pressure, tm.PolonskyKeerRey.pressure)
-        solver.max_iter = max_iter
-        solver.dump_freq = 10**9  # prints only the first and the last iteration
-        with _capture_output() as log:
-            error = solver.solve(mean_pressure)  # its final error: above tol when max_iter stopped it
-        dt = time.perf_counter() - t0
-        rows = [ln.split() for ln in log.getvalue().splitlines()]
-        iters = [int(r[0]) for r in rows if r and r[0].isdigit()]
-        return Solution(np.array(model.traction, copy=True).reshape(n), max(iters) if iters else -1, dt,
-                        bool(error < tol))
-
-
-class ContactMechanicsPeer(Peer):
-    """ContactMechanics' constrained_conjugate_gradients (Polonsky-Keer).
-
-    One tolerance ``tol`` drives its three criteria: ``pentol = tol * h_rms``,
-    ``forcetol = tol * mean_pressure * pixel_area``, ``thermotol = tol``.
-    """
-
-    name = "contactmechanics"
-    tol_meaning = "pentol = tol*h_rms, forcetol = tol*p_mean*pixel area, thermotol = tol"
-
-    def __init__(self, E, nu, threads):
-        super().__init__(E, nu, threads)
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore")
-            import ContactMechanics
-            from SurfaceTopography import Topography
-        self.cm, self.Topography = ContactMechanics, Topography
-
-    @staticmethod
-    def available():
-        try:
-            with warnings.catch_warnings():
-                warnings.simplefilter("ignore")
-                import ContactMechanics  # noqa: F401
-                import SurfaceTopography  # noqa: F401
-        except Exception:
-            return False
-        return True
-
-    @staticmethod
-    def version():
-        import ContactMechanics
-
-        return str(ContactMechanics.__version__)
-
-    def solve(self, heights, mean_pressure, tol, *, max_iter=100_000):
-        cm = self.cm
-        n = heights.shape
-        E_star = self.E / (1.0 - self.nu**2)
-        h = np.ascontiguousarray(heights, dtype=float)
-        h_rms = float(np.std(h))
-        pixel = 1.0 / h.size
-        t0 = time.perf_counter()
-        substrate = cm.PeriodicFFTElasticHalfSpace(n, E_star, physical_sizes=(1.0, 1.0))
-        topo = self.Topography(h, physical_sizes=(1.0, 1.0), periodic=True)
-        system = cm.make_system(substrate=substrate, surface=topo)
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore")
-            sol = system.minimize_proxy(
-                external_force=mean_pressure * 1.0, pentol=tol * h_rms, forcetol=tol * mean_pressure * pixel,
-                thermotol=tol, maxiter=max_iter,
-            )
-        dt = time.perf_counter() - t0
-        if not sol.success and int(sol.nit) < max_iter:
-            raise RuntimeError(f"ContactMechanics did not converge: {sol.message}")
-        return Solution(np.asarray(sol.jac).reshape(n) / pixel, int(sol.nit), dt, bool(sol.success))
-
-
-PEERS = {"contactlib": Contactlib, "tamaas": Tamaas, "contactmechanics": ContactMechanicsPeer}
+from .common import (PEERS, REPO, Contactlib, Peer, Solution, child_command, host_info, ladder, pressure_for_area,
+                     rel_l2, self_affine_array, write_json as write_payload)
+from .common import contact_fraction as area
 
 
 # ------------------------------------------------------------------------------------- measures
@@ -267,47 +62,6 @@ def fft_pair_seconds(shape, *, min_total=0.3, min_reps=20) -> float:
         plan.inverse()
         times.append(time.perf_counter() - t0)
     return float(np.median(times))
-
-
-def rel_l2(a: np.ndarray, ref: np.ndarray) -> float:
-    return float(np.linalg.norm(a - ref) / np.linalg.norm(ref))
-
-
-def area(p: np.ndarray) -> float:
-    return float(np.count_nonzero(p > 0)) / p.size
-
-
-def make_surface(n: int, args) -> np.ndarray:
-    h = contactlib.surfaces.self_affine(
-        n, hurst=args.hurst, q_roll=args.q_roll, q_cutoff=n * args.cutoff_fraction, rms_slope=args.rms_slope,
-        seed=args.seed,
-    )
-    return np.ascontiguousarray(h.values)
-
-
-def pressure_for_area(solver: Contactlib, heights: np.ndarray, target: float, args) -> tuple[float, float]:
-    """Mean pressure giving contact fraction ``target`` within 2 % (secant on log A vs log p)."""
-    E_star = args.E / (1 - args.nu**2)
-    p = target * E_star * args.rms_slope / 2.0  # A ~ 2 p / (E* h'_rms) at small contact
-    a = area(solver.solve(heights, p, args.calibration_tol).pressure)
-    slope, history = 1.0, [(p, a)]
-    for _ in range(8):
-        if abs(a / target - 1) < 0.02 or a <= 0:
-            break
-        p = math.exp(math.log(p) + (math.log(target) - math.log(a)) / slope)
-        a = area(solver.solve(heights, p, args.calibration_tol).pressure)
-        (p0, a0), history = history[-1], history + [(p, a)]
-        if a > 0 and a0 > 0 and p != p0 and a != a0:
-            slope = min(max((math.log(a) - math.log(a0)) / (math.log(p) - math.log(p0)), 0.1), 2.0)
-    return p, a
-
-
-def ladder(start: float):
-    """Half-decade tolerances from ``start`` downwards."""
-    k = math.ceil(2 * math.log10(start) - 1e-9)
-    while k > -30:
-        yield 10 ** (k / 2)
-        k -= 1
 
 
 # -------------------------------------------------------------------------------- peak memory
@@ -359,11 +113,10 @@ def peak_memory(peer: str, heights: np.ndarray, p: float, tol: float, threads: i
     with tempfile.TemporaryDirectory() as tmp:
         path = Path(tmp) / "h.npy"
         np.save(path, heights)
-        cmd = [sys.executable, __file__, "--_probe", "--probe-peer", peer, "--probe-surface", str(path),
-               "--probe-pressure", repr(p), "--probe-tol", repr(tol), "--probe-threads", str(threads),
-               "--probe-max-iter", str(args.memory_max_iter),
-               "--E", repr(args.E), "--nu", repr(args.nu)]
-        out = subprocess.run(cmd, capture_output=True, text=True)
+        cmd = child_command("bench_solver", "--_probe", "--probe-peer", peer, "--probe-surface", str(path),
+                            "--probe-pressure", repr(p), "--probe-tol", repr(tol), "--probe-threads", str(threads),
+                            "--probe-max-iter", str(args.memory_max_iter), "--E", repr(args.E), "--nu", repr(args.nu))
+        out = subprocess.run(cmd, capture_output=True, text=True, cwd=REPO)
     lines = [ln for ln in out.stdout.splitlines() if ln.startswith("{")]
     if out.returncode or not lines:
         return {"peak_mib": float("nan"), "method": f"probe failed: {out.stderr[-300:]}"}
@@ -399,7 +152,7 @@ class Row:
     time_is_lower_bound: bool = False  # stopped by the time budget with an error above contactlib's
 
 
-def timed(peer: Peer, heights, p, tol, repeats) -> tuple[list[float], Solution]:
+def timed_solves(peer: Peer, heights, p, tol, repeats) -> tuple[list[float], Solution]:
     sols = [peer.solve(heights, p, tol) for _ in range(repeats)]
     return [s.seconds for s in sols], sols[-1]
 
@@ -426,9 +179,9 @@ def bench_case(n, heights, target, threads, args, log, shared: dict) -> list[Row
     log(f"  N={n} threads={threads} target A={target}: mean pressure {p:.6g} (A={a_cal:.4f}), FFT pair {pair*1e3:.3f} ms")
     if args.warmup:
         warm = ours.solve(heights, p, args.tol)  # warm-up (planning is cached anyway)
-        times, sol = timed(ours, heights, p, args.tol, 1 if warm.seconds > args.single_above else args.repeats)
+        times, sol = timed_solves(ours, heights, p, args.tol, 1 if warm.seconds > args.single_above else args.repeats)
     else:  # the calibration and the reference solves have planned this shape already
-        times, sol = timed(ours, heights, p, args.tol, 1)
+        times, sol = timed_solves(ours, heights, p, args.tol, 1)
     err_ours = rel_l2(sol.pressure, ref.pressure)
     t_iter = float(np.median(times)) / max(sol.iterations, 1)
     base = Row("contactlib", n, threads, target, p, args.tol, float(np.median(times)), times, sol.iterations, pair,
@@ -465,7 +218,7 @@ def bench_case(n, heights, target, threads, args, log, shared: dict) -> list[Row
         if lower_bound or last.seconds > args.single_above:
             times, s = [last.seconds], last  # one long solve: the ladder's own run is the measurement
         else:
-            times, s = timed(peer, heights, p, chosen, args.repeats)
+            times, s = timed_solves(peer, heights, p, chosen, args.repeats)
         t_iter = float(np.median(times)) / max(s.iterations, 1)
         rows.append(Row(name, n, threads, target, p, chosen, float(np.median(times)), times, s.iterations, pair,
                         t_iter / pair, (t_iter - peer.fft_pairs_per_iteration * pair) / t_iter, area(s.pressure),
@@ -481,37 +234,6 @@ def bench_case(n, heights, target, threads, args, log, shared: dict) -> list[Row
             mem = peak_memory(row.solver, heights, p, row.tol, threads, args)
             row.peak_mib, row.memory_method = mem["peak_mib"], mem["method"]
     return rows
-
-
-def host_info() -> dict:
-    """The machine and software a benchmark ran on (bench_friction.py records the same)."""
-    cpu = "?"
-    try:
-        with open("/proc/cpuinfo") as f:
-            cpu = next(ln.split(":", 1)[1].strip() for ln in f if ln.startswith("model name"))
-    except (OSError, StopIteration):
-        pass
-    import pyfftw
-
-    info = {
-        "cpu": cpu, "logical_cpus": os.cpu_count(), "python": platform.python_version(), "numpy": np.__version__,
-        "pyfftw": pyfftw.__version__, "contactlib": contactlib.__version__, "fftw_effort": cfft.fft_options()["effort"],
-        "date": time.strftime("%Y-%m-%d %H:%M:%S"), "command": " ".join([Path(sys.argv[0]).name] + sys.argv[1:]),
-    }
-    try:
-        repo = Path(__file__).resolve().parent.parent
-        rev = subprocess.run(["git", "-C", str(repo), "describe", "--always", "--dirty"], capture_output=True, text=True)
-        info["contactlib_git"] = rev.stdout.strip() or "?"
-    except OSError:
-        pass
-    try:
-        import psutil
-
-        info["memory_gib"] = round(psutil.virtual_memory().total / 2**30, 1)
-    except ImportError:
-        pass
-    info["load_avg_1min"] = round(os.getloadavg()[0], 2)
-    return info
 
 
 def machine_info() -> dict:
@@ -616,7 +338,7 @@ def main(argv=None) -> int:
     info = machine_info()
     rows, shared = [], {}
     for n in args.sizes:
-        heights = make_surface(n, args)
+        heights = self_affine_array(n, args)
         for threads in args.threads:
             for target in args.contact:
                 rows += bench_case(n, heights, target, threads, args, log, shared)
@@ -630,11 +352,9 @@ def main(argv=None) -> int:
 
 
 def write_json(path: Path, info: dict, args, rows: list[Row]) -> None:
-    tmp = path.with_suffix(".tmp")
-    tmp.write_text(json.dumps({"machine": info, "args": {k: (str(v) if isinstance(v, Path) else v)
-                                                          for k, v in vars(args).items() if not k.startswith(("probe", "_"))},
-                               "rows": [asdict(r) for r in rows]}, indent=1))
-    os.replace(tmp, path)
+    write_payload(path, {"machine": info, "args": {k: (str(v) if isinstance(v, Path) else v)
+                                                   for k, v in vars(args).items() if not k.startswith(("probe", "_"))},
+                         "rows": [asdict(r) for r in rows]})
 
 
 if __name__ == "__main__":

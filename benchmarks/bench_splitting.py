@@ -8,34 +8,26 @@ solvers run on them, interleaved, medians of ``--repeats`` (a solver that does n
 
 ``--try-first``: the dispatch of a loss-dominated body (E_inf/E0 = ``--ratio``, nu = 0.5, the 2D surface of
 ``bench_viscoelastic.py`` at the load of 10 % elastic contact, ``--sizes``, ``--zetas``), before (Douglas-Rachford
-alone) and after (the bounded GMRES first try, Douglas-Rachford if it fails: ``_Setup.run``), interleaved with
+alone) and after (the bounded GMRES first try, Douglas-Rachford if it fails: the dispatch of ``solve``), interleaved with
 an elastic solve of the same scene, the unit of cost; medians of ``--repeats``, load average before and after.
 
-Run ``python benchmarks/bench_splitting.py --help``.
+Run ``python -m benchmarks.bench_splitting --help``.
 """
 
 from __future__ import annotations
 
-import os
-
-for _var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
-    os.environ.setdefault(_var, "1")
-
 import argparse
+import os
 import statistics
-import sys
 import time
-from pathlib import Path
 
 import numpy as np
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-import contactlib  # noqa: E402
-from contactlib import Elastic, Layer, Viscoelastic  # noqa: E402
-from contactlib.contact import _setup  # noqa: E402
-from contactlib.solvers import solve_coupled  # noqa: E402
-from contactlib.solvers.splitting import fourier_multiplier, solve_splitting  # noqa: E402
-from bench_solver import host_info  # noqa: E402
+import contactlib
+from contactlib import Elastic, Layer, Viscoelastic
+
+from .common import complex_multiplier, host_info, load_for_contact, nonsymmetric_solve, prepared_problem
+from .common import sliding_surface as surface
 
 
 def profile(n, dim=1, cutoff=None):
@@ -48,9 +40,8 @@ def q0_of(h):
 
 
 def scene(h, material, load, velocity=None, friction=0.0, layer=None, tol=1e-8):
-    return _setup(h, material=material, mean_pressure=load, penetration=None, periodic=True, tol=tol, max_iter=3000,
-                  kernel="spectral", method="cg", length=None, initial_pressure=None, target_error=None, layer=layer,
-                  friction=friction, sliding_direction=0.0 if friction else None, sliding_velocity=velocity)
+    return prepared_problem(h, material=material, mean_pressure=load, tol=tol, max_iter=3000, layer=layer,
+                            friction=friction, sliding_velocity=velocity)
 
 
 def scenes(n1, n2):
@@ -71,8 +62,6 @@ def scenes(n1, n2):
 
 def try_first(sizes, zetas, ratio, repeats, tol=1e-8) -> None:
     """Print the before/after table of the loss-dominated dispatch (see the module docstring)."""
-    from bench_viscoelastic import load_for, surface
-
     material = Viscoelastic.standard_linear_solid(E0=1.0, E_inf=ratio, tau=1.0, nu=0.5)
     print(f"\nload average {os.getloadavg()[0]:.2f}; E_inf/E0 = {ratio:g}, tol {tol:g}, medians of {repeats}")
     print("\n| n | zeta | elastic s (it) | before: DR s (ratio), it | try: it (sets), residual, s (ratio) | after: solver, "
@@ -81,25 +70,23 @@ def try_first(sizes, zetas, ratio, repeats, tol=1e-8) -> None:
     ratios = []
     for n in sizes:
         h = surface(n)
-        load = load_for(h, 0.1)
+        load = load_for_contact(h, 0.1)
         for zeta in zetas:
-            s = _setup(h, material=material, mean_pressure=load, penetration=None, periodic=True, tol=tol,
-                       max_iter=10_000, kernel="spectral", method="cg", length=None, initial_pressure=None,
-                       target_error=None, layer=None, friction=0.0, sliding_direction=None,
-                       sliding_velocity=(zeta / (2 * np.pi), 0.0))
+            s = prepared_problem(h, material=material, mean_pressure=load, tol=tol, max_iter=10_000,
+                                 sliding_velocity=(zeta / (2 * np.pi), 0.0))
             te, tb, ta, tt = [], [], [], []
             for _ in range(repeats):  # interleaved: the machine's load hits all alike
                 t0 = time.perf_counter()
                 e = contactlib.solve(h, E=1.0, nu=0.5, mean_pressure=load, tol=tol)
                 te.append(time.perf_counter() - t0)
                 t0 = time.perf_counter()
-                attempt = s._krylov(first_try=True)  # the try alone: what a failed one adds
+                attempt = nonsymmetric_solve(s, "krylov", first_try=True)  # the try alone: what a failed one adds
                 tt.append(time.perf_counter() - t0)
                 t0 = time.perf_counter()
-                before = s._splitting()
+                before = nonsymmetric_solve(s, "splitting")
                 tb.append(time.perf_counter() - t0)
                 t0 = time.perf_counter()
-                after = s.run()
+                after = nonsymmetric_solve(s, "dispatch")
                 ta.append(time.perf_counter() - t0)
             e_s, b_s, a_s, t_s = (statistics.median(t) for t in (te, tb, ta, tt))
             ratios.append(a_s / b_s)
@@ -137,18 +124,17 @@ def main(argv=None) -> int:
           "| \\|p_DR - p_c\\| / \\|p_DR\\| |")
     print("|---|---|---|---|---|---|")
     for name, s in scenes(args.n1, args.n2):
-        multiplier = fourier_multiplier(s.body.compliance, s.body.coupling)
+        multiplier = complex_multiplier(s)
         nonzero = np.ones(multiplier.shape, dtype=bool)
         nonzero.flat[0] = False
         skew = float(np.max(np.abs(multiplier[nonzero].imag) / multiplier[nonzero].real))
-        load = s.solver_args["mean_pressure"]
         tc, ts = [], []
         for _ in range(args.repeats):
             t0 = time.perf_counter()
-            c = solve_coupled(s._symmetric, s.body.coupling, s.values, **s.solver_args)
+            c = nonsymmetric_solve(s, "coupled")
             tc.append(time.perf_counter() - t0)
             t0 = time.perf_counter()
-            d = solve_splitting(multiplier, s.values, mean_pressure=load, tol=s.solver_args["tol"])
+            d = nonsymmetric_solve(s, "douglas-rachford", multiplier=multiplier)
             ts.append(time.perf_counter() - t0)
             if not c.converged:
                 break

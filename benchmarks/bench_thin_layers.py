@@ -1,7 +1,7 @@
 """Thin layers: displacement control of plates (semismooth Newton) and the thin confined viscoelastic layer with
 Coulomb friction (non-monotone operator).
 
-    PYTHONPATH=. OMP_NUM_THREADS=1 python benchmarks/bench_thin_layers.py
+    python -m benchmarks.bench_thin_layers
 
 (A) q0 h = 0.1 remote-pressure layer, nu = 0.3: load control, then displacement control at the penetration
 found; wall times (median of 3, interleaved), CG iterations, the load and pressure agreement, and the dual
@@ -10,8 +10,6 @@ iteration's residual after 2000 iterations. (B) confined layer, SLS E_inf/E0 = 1
 """
 
 import os
-import sys
-from pathlib import Path
 
 import numpy as np
 
@@ -21,8 +19,7 @@ from contactlib.grid import Grid
 from contactlib.materials import Elastic
 from contactlib.solvers import solve_periodic_displacement
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-from _timing import timed  # noqa: E402
+from .common import timed
 
 
 def plates():

@@ -15,21 +15,15 @@ Both codes at the same tolerance (``--tol``) and steps. Reported, from one run:
 * the exact full-contact test for both codes: a sinusoid (32^2) pressed beyond full contact under a constant
   load, one branch, the pressure amplitude at 20 tau over its long-term value (exactly 1).
 
-Run: ``python benchmarks/bench_transient.py`` (needs the ``bench`` extra for tamaas).
+Run: ``python -m benchmarks.bench_transient`` (needs the ``bench`` extra for tamaas).
 """
 
 from __future__ import annotations
-
-import os
-
-for _var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
-    os.environ.setdefault(_var, "1")
 
 import argparse
 import json
 import resource
 import subprocess
-import sys
 import time
 
 import numpy as np
@@ -37,6 +31,8 @@ import numpy as np
 import contactlib
 from contactlib import surfaces
 from contactlib.hereditary import PronyHistory
+
+from .common import REPO, child_command
 
 NU = 0.3
 SHEAR, TAUS = (2.0, 0.5), (1.0, 0.1)
@@ -160,8 +156,9 @@ def main():
               f"{row.get('area_tamaas', float('nan')):.4f} |", flush=True)
     print("\n| steps | peak RSS [MiB] |\n|---|---|")
     for steps in args.memory_steps:
-        peak = float(subprocess.run([sys.executable, __file__, "--_memory", str(args.memory_n), str(steps),
-                                     "--dt", str(args.dt)], capture_output=True, text=True, check=True).stdout)
+        peak = float(subprocess.run(child_command("bench_transient", "--_memory", str(args.memory_n), str(steps),
+                                                  "--dt", str(args.dt)),
+                                    capture_output=True, text=True, check=True, cwd=REPO).stdout)
         rows.append({"memory_steps": steps, "n": args.memory_n, "peak_rss_mib": peak})
         print(f"| {steps} | {peak:.0f} |", flush=True)
     if not args.no_peer:

@@ -24,27 +24,21 @@ field runs in a fresh interpreter (``--same-process`` to opt out; :func:`run_iso
 ``--allocator keep`` runs them with glibc keeping freed memory mapped (no page faults on reuse). Grids above
 ``--max-nodes`` points per side are skipped (the full solver's memory and time on a small machine), and said so.
 
-Run ``python benchmarks/bench_two_scale.py --help``; ``--json`` writes every number.
+Run ``python -m benchmarks.bench_two_scale --help``; ``--json`` writes every number.
 """
 
 from __future__ import annotations
 
-import os
-
-for _var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
-    os.environ.setdefault(_var, "1")
-
 import argparse
 import json
 import multiprocessing
-import sys
+import os
 from concurrent.futures import ProcessPoolExecutor
 from pathlib import Path
 
 from contactlib.studies.two_scale import compare_methods, grid_points
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-from bench_solver import host_info  # noqa: E402
+from .common import host_info
 
 E, NU = 1.0, 0.5
 

@@ -19,20 +19,13 @@ approach of :mod:`contactlib.studies.two_scale`) on a standard linear solid (``E
 Errors: max over steps and asperities of ``|P_k - P_k^ref|`` over the step's largest ``P_k^ref``. One timed
 run each, after one warm-up step of each (FFT plans); ratios are full / method from the same run.
 
-Run ``python benchmarks/bench_two_scale_transient.py --help``; ``--json`` writes every number.
+Run ``python -m benchmarks.bench_two_scale_transient --help``; ``--json`` writes every number.
 """
 
 from __future__ import annotations
 
-import os
-
-for _var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
-    os.environ.setdefault(_var, "1")
-
 import argparse
 import json
-import sys
-import time
 from pathlib import Path
 
 import numpy as np
@@ -41,16 +34,9 @@ import contactlib
 from contactlib import two_scale
 from contactlib.studies.two_scale import nodes_per_spacing
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-from bench_solver import host_info  # noqa: E402
+from .common import host_info, timed
 
 NU = 0.5
-
-
-def timed(fn, *args, **kwargs):
-    start = time.perf_counter()
-    out = fn(*args, **kwargs)
-    return out, time.perf_counter() - start
 
 
 def main(argv=None) -> None:
@@ -88,9 +74,9 @@ def main(argv=None) -> None:
                    (two_scale.solve_transient, stop),
                    (two_scale.solve_transient, {"scale": "macro"})):  # warm-up: one step of each
         fn(field, material=m, times=times[:1], mean_pressure=load, **kw)
-    full, full_time = timed(contactlib.solve_transient, field, tol=args.full_tol, save_fields=True, **common)
-    two, two_time = timed(two_scale.solve_transient, field, **stop, **common)
-    macro, macro_time = timed(two_scale.solve_transient, field, scale="macro", **common)
+    full_time, full = timed(lambda: contactlib.solve_transient(field, tol=args.full_tol, save_fields=True, **common), 1)
+    two_time, two = timed(lambda: two_scale.solve_transient(field, **stop, **common), 1)
+    macro_time, macro = timed(lambda: two_scale.solve_transient(field, scale="macro", **common), 1)
 
     def error(forces):
         return float(np.max(np.abs(forces - ref_forces).max(axis=1) / ref_forces.max(axis=1)))

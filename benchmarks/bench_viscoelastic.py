@@ -20,53 +20,26 @@ number to ``--json``:
    one cold elastic solve. Their total time (medians of ``--repeats``) over one cold elastic solve is the sweep
    ratio an elastic-speed solver would reach from starts as good as this walk's.
 
-Run ``python benchmarks/bench_viscoelastic.py --help``.
+Run ``python -m benchmarks.bench_viscoelastic --help``.
 """
 
 from __future__ import annotations
 
-import os
-
-for _var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
-    os.environ.setdefault(_var, "1")
-
 import argparse
 import json
+import os
 import statistics
-import sys
 import time
 from pathlib import Path
 
 import numpy as np
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-import contactlib  # noqa: E402
-from bench_solver import host_info  # noqa: E402
+import contactlib
 
-
-def surface(n: int, seed: int = 1):
-    return contactlib.surfaces.self_affine(n, hurst=0.8, q_roll=2, q_cutoff=n // 8, rms_slope=0.1, seed=seed)
-
-
-def load_for(h, target: float) -> float:
-    """Mean pressure [E0 units] giving ``target`` contact elastically (bisection on the log of the load)."""
-    lo, hi = 1e-4, 1.0
-    for _ in range(30):
-        mid = np.sqrt(lo * hi)
-        area = float(contactlib.solve(h, E=1.0, nu=0.5, mean_pressure=mid, tol=1e-6).contact_area)
-        lo, hi = (mid, hi) if area < target else (lo, mid)
-        if abs(area - target) < 0.01:
-            break
-    return float(mid)
-
-
-def timed(fn, repeats: int):
-    times, out = [], None
-    for _ in range(repeats):
-        t0 = time.perf_counter()
-        out = fn()
-        times.append(time.perf_counter() - t0)
-    return statistics.median(times), out
+from .common import host_info
+from .common import load_for_contact as load_for
+from .common import sliding_surface as surface
+from .common import timed
 
 
 def elastic_floor(h, p: float, zetas, answers: list, tol: float, elastic_s: float, repeats: int) -> dict:

@@ -1,98 +1,20 @@
 """Scenes chosen to break solvers. Each asserts convergence, physical sanity and a reference.
 
-To add a case: append a :class:`Scene` to ``SCENES`` (a surface factory, the solve keywords and,
-optionally, a check of the result).
+The scenes live in :mod:`contactlib.testing` (shared with ``benchmarks/bench_hard_cases.py``): to add a case,
+append a :class:`contactlib.testing.HardCase` to ``HARD_CASES``.
 """
-
-from dataclasses import dataclass, field
-from typing import Callable
 
 import numpy as np
 import pytest
 
 import contactlib
-from contactlib.reference import westergaard
+from contactlib.testing import HARD_CASE_E as E
+from contactlib.testing import HARD_CASE_NU as NU
+from contactlib.testing import HARD_CASES as SCENES
 
-E, NU = 1.0, 0.5
 # two solves at tol 1e-8 agree to ~1e-7 in the pressure field on 2D grids (benchmarks/RESULTS.md), ~1e-5 on the
 # 1000-scale profile
 CROSS_CHECK_RTOL = 5e-5
-E_STAR = E / (1 - NU**2)
-
-
-def rough(n, hurst=0.8, dim=2, q_roll=2, q_cutoff=None, seed=0, **kw):
-    return lambda: contactlib.surfaces.self_affine(n, hurst=hurst, q_roll=q_roll, q_cutoff=q_cutoff or n // 4,
-                                                   rms_slope=0.1, seed=seed, dim=dim, **kw)
-
-
-def spike():
-    h = contactlib.surfaces.self_affine(128, hurst=0.8, q_roll=2, q_cutoff=32, rms_height=1.0, seed=2).copy()
-    h[40, 70] = 100.0  # one spike a hundred rms heights tall
-    return h
-
-
-def check_single_point(out):
-    assert 0 < int((out.pressure > 0).sum()) <= 3
-
-
-def check_spike_carries_load_alone(out):
-    assert int((out.pressure > 0).sum()) == 1 and float(out.pressure[40, 70]) > 0
-
-
-def check_uniform(value):
-    def check(out):
-        np.testing.assert_allclose(out.pressure.values, value, rtol=1e-12)
-        assert float(out.contact_area) == 1.0
-    return check
-
-
-def check_fraction(lo, hi):
-    def check(out):
-        assert lo <= float(out.contact_area) <= hi
-    return check
-
-
-def check_westergaard_threshold(out):
-    exact = westergaard.full_contact_field(out.x.values, mean_pressure=float(out.mean_pressure), amplitude=0.01,
-                                           wavelength=1.0, E_star=E_STAR)
-    np.testing.assert_allclose(out.pressure.values, exact, atol=1e-4 * float(out.mean_pressure))
-
-
-@dataclass
-class Scene:
-    name: str
-    surface: Callable
-    solve: dict
-    check: Callable | None = None
-    extra: dict = field(default_factory=dict)
-    cross_check: bool = True  # re-solve under displacement control at the found penetration
-
-
-P_STAR = westergaard.full_contact_pressure(amplitude=0.01, wavelength=1.0, E_star=E_STAR)
-
-SCENES = [
-    Scene("single touching point", rough(256), {"mean_pressure": 1e-9}, check_single_point),
-    # 0.2 is just below the full-contact load (~0.224) of this surface: 99.9 % contact
-    Scene("near full contact", rough(128), {"mean_pressure": 0.2}, check_fraction(0.99, 0.9999)),
-    Scene("Hurst 0.3", rough(256, hurst=0.3), {"mean_pressure": 0.01}, check_fraction(0.02, 0.5)),
-    Scene("Hurst 0.95", rough(256, hurst=0.95), {"mean_pressure": 0.01}, check_fraction(0.02, 0.5)),
-    Scene("1000 scales in 1D at 65536 points", rough(65536, dim=1, q_roll=1, q_cutoff=1000, hurst=0.8),
-          {"mean_pressure": 0.01}, check_fraction(0.01, 0.5)),
-    Scene("perfectly flat", lambda: contactlib.surfaces.self_affine(64, hurst=0.8, q_roll=2, q_cutoff=16,
-                                                                     rms_height=1.0, seed=0) * 0.0,
-          {"mean_pressure": 0.3}, check_uniform(0.3), cross_check=False),  # no penetration fixes its load
-    Scene("one tall spike", spike, {"mean_pressure": 1e-6}, check_spike_carries_load_alone),
-    Scene("load exactly at full contact", lambda: contactlib.surfaces.wavy(512, amplitude=0.01),
-          {"mean_pressure": P_STAR, "tol": 1e-10}, check_westergaard_threshold,
-          cross_check=False),  # a periodic penetration at full contact does not fix the load: refused
-    Scene("odd grid 101 x 99", lambda: contactlib.surfaces.self_affine(
-        101, hurst=0.7, q_roll=2, q_cutoff=25, rms_slope=0.1, seed=1).isel(y=slice(0, 99)),
-        {"mean_pressure": 0.02}, check_fraction(0.05, 0.6)),
-    Scene("non-power-of-two 96 x 96, Love kernel", rough(96), {"mean_pressure": 0.02, "kernel": "love"},
-          check_fraction(0.05, 0.6)),
-    Scene("anisotropic gamma 0.1", rough(128, anisotropy=0.1, angle=0.3), {"mean_pressure": 0.02},
-          check_fraction(0.05, 0.6)),
-]
 
 
 @pytest.mark.parametrize("scene", SCENES, ids=[s.name for s in SCENES])

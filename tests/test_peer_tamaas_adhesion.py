@@ -1,13 +1,10 @@
 """Cross-check of the cohesive solver against tamaas 2.9's adhesion functional on its Polonsky-Keer-Rey
-solver (``benchmarks/tamaas_adhesion.py``): a 2D periodic rough surface, 256^2, the exponential law, the
+solver (:func:`contactlib.testing.solve_tamaas_adhesive`): a 2D periodic rough surface, 256^2, the exponential law, the
 same work, range and mean pressure. tamaas is in the ``test`` extra, never a runtime dependency.
 
 The Maugis law is not compared here: contactlib's is the Dugdale step as a narrow ramp
 (:data:`contactlib.adhesion.MAUGIS_RAMP`), tamaas' the bare step, so their answers differ by more than
 1e-3 by design (the benchmark prints both)."""
-
-import sys
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -15,8 +12,7 @@ import pytest
 import contactlib
 
 pytest.importorskip("tamaas", reason="tamaas (the `test` extra) is not installed")
-sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "benchmarks"))
-from tamaas_adhesion import solve_tamaas  # noqa: E402
+from contactlib.testing import solve_tamaas_adhesive as solve_tamaas  # noqa: E402
 
 
 def test_exponential_adhesion_matches_tamaas():

@@ -1,0 +1,452 @@
+"""What the benchmark scripts share: timing, the machine they ran on, the peer solvers, shared scenes, and the one
+gateway to contactlib's internals that some benchmarks time.
+
+Run every script from the repository root as a module, ``python -m benchmarks.<script> --help``.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import importlib.metadata
+import io
+import json
+import math
+import os
+import platform
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+import warnings
+from dataclasses import dataclass
+from pathlib import Path
+from types import SimpleNamespace
+
+import numpy as np
+
+import contactlib
+from contactlib import fft as cfft
+
+REPO = Path(__file__).resolve().parent.parent
+"""The repository root: the working directory of the scripts' child processes."""
+
+
+# --------------------------------------------------------------------------------------------------- timing
+
+def timed(fn, repeats: int, warm: bool = False, setup=None):
+    """``(median seconds, last output)`` of ``repeats`` calls of ``fn()``. ``warm``: one untimed call first
+    (numba compilation, FFT plans, a peer's own caches); ``setup``: called untimed before each call."""
+    if warm:
+        fn()
+    times, out = [], None
+    for _ in range(repeats):
+        if setup is not None:
+            setup()
+        start = time.perf_counter()
+        out = fn()
+        times.append(time.perf_counter() - start)
+    return statistics.median(times), out
+
+
+def ladder(start: float):
+    """Half-decade tolerances from ``start`` downwards (a peer's tolerance tightened until it is as accurate)."""
+    k = math.ceil(2 * math.log10(start) - 1e-9)
+    while k > -30:
+        yield 10 ** (k / 2)
+        k -= 1
+
+
+def rel_l2(a: np.ndarray, ref: np.ndarray) -> float:
+    """Relative L2 difference of two fields."""
+    return float(np.linalg.norm(a - ref) / np.linalg.norm(ref))
+
+
+# ----------------------------------------------------------------------------------------------- the machine
+
+def command_line() -> str:
+    """How this process was started, as ``python -m benchmarks.<script> <arguments>``."""
+    spec = getattr(sys.modules.get("__main__"), "__spec__", None)
+    head = f"python -m {spec.name}" if spec is not None else Path(sys.argv[0]).name
+    return " ".join([head] + sys.argv[1:])
+
+
+def child_command(module: str, *arguments: str) -> list[str]:
+    """The command that runs ``benchmarks.<module>`` in a fresh interpreter (run it with ``cwd=REPO``)."""
+    return [sys.executable, "-m", f"benchmarks.{module}", *arguments]
+
+
+def dist_version(name: str) -> str:
+    """The installed distribution's version. (``ContactMechanics.__version__`` comes from DiscoverVersion, which
+    reports the git revision of the *current directory* when it is a repository: here, contactlib's commit.)"""
+    try:
+        return importlib.metadata.version(name)
+    except importlib.metadata.PackageNotFoundError:
+        return "not installed"
+
+
+def host_info() -> dict:
+    """The machine and software a benchmark ran on: CPU, versions, git revision, date, command, load."""
+    cpu = "?"
+    try:
+        with open("/proc/cpuinfo") as f:
+            cpu = next(ln.split(":", 1)[1].strip() for ln in f if ln.startswith("model name"))
+    except (OSError, StopIteration):
+        pass
+    import pyfftw
+
+    info = {
+        "cpu": cpu, "logical_cpus": os.cpu_count(), "python": platform.python_version(), "numpy": np.__version__,
+        "pyfftw": pyfftw.__version__, "contactlib": contactlib.__version__, "fftw_effort": cfft.fft_options()["effort"],
+        "date": time.strftime("%Y-%m-%d %H:%M:%S"), "command": command_line(),
+    }
+    try:
+        rev = subprocess.run(["git", "-C", str(REPO), "describe", "--always", "--dirty"], capture_output=True, text=True)
+        info["contactlib_git"] = rev.stdout.strip() or "?"
+    except OSError:
+        pass
+    try:
+        import psutil
+
+        info["memory_gib"] = round(psutil.virtual_memory().total / 2**30, 1)
+    except ImportError:
+        pass
+    info["load_avg_1min"] = round(os.getloadavg()[0], 2)
+    return info
+
+
+def write_json(path: Path, payload: dict) -> None:
+    """Write ``payload`` to ``path`` atomically (a killed run keeps the last complete file)."""
+    tmp = Path(path).with_suffix(".tmp")
+    tmp.write_text(json.dumps(payload, indent=1, default=str))
+    os.replace(tmp, path)
+
+
+# ------------------------------------------------------------------------------------------------ the scenes
+
+def self_affine_surface(n: int, args, *, dim: int = 2):
+    """The benchmarks' rough surface (a DataArray on the unit window): ``self_affine`` with ``args.hurst``,
+    ``args.q_roll``, ``q_cutoff = args.cutoff_fraction * n``, ``args.rms_slope`` and ``args.seed``."""
+    return contactlib.surfaces.self_affine(n, hurst=args.hurst, q_roll=args.q_roll, q_cutoff=n * args.cutoff_fraction,
+                                           rms_slope=args.rms_slope, seed=args.seed, dim=dim)
+
+
+def self_affine_array(n: int, args) -> np.ndarray:
+    """:func:`self_affine_surface`'s 2D heights as a contiguous array (for the peers)."""
+    return np.ascontiguousarray(self_affine_surface(n, args).values)
+
+
+def contact_fraction(pressure: np.ndarray) -> float:
+    """Fraction of the nodes in contact (``p > 0``)."""
+    return float(np.count_nonzero(pressure > 0)) / pressure.size
+
+
+def calibrate_load(contact_area, target: float, first_guess: float, *, rtol: float = 0.02,
+                   steps: int = 8) -> tuple[float, float]:
+    """Mean pressure giving contact fraction ``target`` within ``rtol``: secant on log A against log p.
+
+    ``contact_area(p)`` solves the scene at mean pressure ``p``; returns ``(p, its contact fraction)``."""
+    p = first_guess
+    area, slope = contact_area(p), 1.0
+    for _ in range(steps):
+        if abs(area / target - 1) <= rtol or area <= 0 or area >= 1:
+            break
+        previous = (p, area)
+        p = math.exp(math.log(p) + (math.log(target) - math.log(area)) / slope)
+        area = contact_area(p)
+        if 0 < area < 1 and area != previous[1] and p != previous[0]:
+            slope = min(max((math.log(area) - math.log(previous[1])) / (math.log(p) - math.log(previous[0])), 0.1),
+                        2.0)
+    return p, area
+
+
+def pressure_for_area(solver, heights: np.ndarray, target: float, args) -> tuple[float, float]:
+    """Mean pressure giving contact fraction ``target`` within 2 % on ``solver`` (a :class:`Contactlib`) at
+    ``args.calibration_tol``, from the small-contact estimate ``A ~ 2 p / (E* h'_rms)``."""
+    E_star = args.E / (1 - args.nu**2)
+    first = target * E_star * args.rms_slope / 2.0
+    return calibrate_load(lambda p: contact_fraction(solver.solve(heights, p, args.calibration_tol).pressure),
+                          target, first)
+
+
+def sliding_surface(n: int, seed: int = 1):
+    """The steady-sliding benchmarks' 2D surface: Hurst 0.8, rolloff 2, cutoff ``n / 8``, rms slope 0.1."""
+    return contactlib.surfaces.self_affine(n, hurst=0.8, q_roll=2, q_cutoff=n // 8, rms_slope=0.1, seed=seed)
+
+
+def load_for_contact(h, target: float) -> float:
+    """Mean pressure [E0 units] giving ``target`` contact elastically (``E = 1``, ``nu = 0.5``; bisection on the
+    log of the load, to 0.01 in the contact fraction)."""
+    lo, hi = 1e-4, 1.0
+    for _ in range(30):
+        mid = np.sqrt(lo * hi)
+        area = float(contactlib.solve(h, E=1.0, nu=0.5, mean_pressure=mid, tol=1e-6).contact_area)
+        lo, hi = (mid, hi) if area < target else (lo, mid)
+        if abs(area - target) < 0.01:
+            break
+    return float(mid)
+
+
+# ------------------------------------------------------------------------------------------------- the peers
+
+@dataclass
+class Solution:
+    pressure: np.ndarray
+    iterations: int
+    seconds: float
+    converged: bool = True  # False: stopped by the iteration cap (``max_iter``) before its tolerance
+
+
+class Peer:
+    """One solver under test: ``solve(heights, mean_pressure, tol) -> Solution``.
+
+    ``heights`` live on the periodic unit square, higher points touch first; ``E``/``nu`` as in
+    :func:`contactlib.solve`; the returned pressure is compressive-positive on the same grid.
+    """
+
+    name = "peer"
+    tol_meaning = ""
+    fft_pairs_per_iteration = 2  # a Polonsky-Keer iteration: K p and K t
+
+    def __init__(self, E: float, nu: float, threads: int):
+        self.E, self.nu, self.threads = E, nu, threads
+
+    @staticmethod
+    def available() -> bool:
+        return True
+
+    @staticmethod
+    def version() -> str:
+        return "?"
+
+    def solve(self, heights: np.ndarray, mean_pressure: float, tol: float, *, max_iter: int = 100_000) -> Solution:
+        raise NotImplementedError
+
+
+class Contactlib(Peer):
+    name = "contactlib"
+    tol_meaning = "scale-free complementarity residual (contactlib.solvers.contact_residual)"
+    fft_pairs_per_iteration = 2.5  # K p, the preconditioner P g, and the forward transform of t (load control)
+
+    def __init__(self, E, nu, threads):
+        super().__init__(E, nu, threads)
+        cfft.set_fft_options(threads=threads)
+
+    @staticmethod
+    def version():
+        return contactlib.__version__
+
+    def _solve(self, heights, mean_pressure, tol, max_iter):
+        try:
+            out = contactlib.solve(heights, E=self.E, nu=self.nu, mean_pressure=mean_pressure, tol=tol, length=1.0,
+                                   max_iter=max_iter)
+        except contactlib.ConvergenceError as exc:
+            return exc.dataset, False
+        return out, True
+
+    def solve(self, heights, mean_pressure, tol, *, max_iter=10_000):
+        t0 = time.perf_counter()
+        out, converged = self._solve(heights, mean_pressure, tol, max_iter)
+        dt = time.perf_counter() - t0
+        return Solution(out["pressure"].values, int(out["iterations"]), dt, converged)
+
+    def reference(self, heights, mean_pressure, tol, *, max_iter=3000) -> tuple[Solution, float]:
+        """The tightest solution reachable, and its residual (round-off can stall it above ``tol``)."""
+        out, _ = self._solve(heights, mean_pressure, tol, max_iter)
+        return Solution(out["pressure"].values, int(out["iterations"]), 0.0), float(out["residual"])
+
+
+@contextlib.contextmanager
+def _capture_output():
+    """Capture what C++ code writes to file descriptors 1 and 2 (tamaas logs its iterations there)."""
+    sys.stdout.flush()
+    sys.stderr.flush()
+    saved = {fd: os.dup(fd) for fd in (1, 2)}
+    buf = io.StringIO()
+    with tempfile.TemporaryFile(mode="w+") as tmp:
+        for fd in (1, 2):
+            os.dup2(tmp.fileno(), fd)
+        try:
+            with contextlib.redirect_stdout(buf), contextlib.redirect_stderr(buf):  # pybind11 redirects
+                yield buf
+        finally:
+            sys.stdout.flush()
+            sys.stderr.flush()
+            for fd, old in saved.items():
+                os.dup2(old, fd)
+                os.close(old)
+            tmp.seek(0)
+            buf.write(tmp.read())
+
+
+class Tamaas(Peer):
+    name = "tamaas"
+    tol_meaning = "tamaas PolonskyKeerRey.computeError (its own normalised complementarity)"
+
+    def __init__(self, E, nu, threads):
+        super().__init__(E, nu, threads)
+        import tamaas as tm
+
+        self.tm = tm
+        tm.initialize(threads)  # the PyPI wheel is built with the cpp backend: single-threaded anyway
+
+    @staticmethod
+    def available():
+        try:
+            import tamaas  # noqa: F401
+        except ImportError:
+            return False
+        return True
+
+    @staticmethod
+    def version():
+        import tamaas as tm
+
+        return f"{tm.__version__} (backend {tm.TamaasInfo.backend})"
+
+    def solve(self, heights, mean_pressure, tol, *, max_iter=100_000):
+        tm = self.tm
+        n = heights.shape
+        surface = np.ascontiguousarray(heights, dtype=float)
+        t0 = time.perf_counter()
+        model = tm.ModelFactory.createModel(tm.model_type.basic_2d, [1.0, 1.0], list(n))
+        model.E, model.nu = self.E, self.nu
+        solver = tm.PolonskyKeerRey(model, surface, tol, tm.PolonskyKeerRey.pressure, tm.PolonskyKeerRey.pressure)
+        solver.max_iter = max_iter
+        solver.dump_freq = 10**9  # prints only the first and the last iteration
+        with _capture_output() as log:
+            error = solver.solve(mean_pressure)  # its final error: above tol when max_iter stopped it
+        dt = time.perf_counter() - t0
+        rows = [ln.split() for ln in log.getvalue().splitlines()]
+        iters = [int(r[0]) for r in rows if r and r[0].isdigit()]
+        return Solution(np.array(model.traction, copy=True).reshape(n), max(iters) if iters else -1, dt,
+                        bool(error < tol))
+
+
+def contactmechanics_solve(heights: np.ndarray, *, mean_pressure: float, E: float, nu: float, tol: float,
+                           max_iter: int, thickness: float | None = None) -> dict:
+    """ContactMechanics' Polonsky-Keer solver (``make_system(...).minimize_proxy``) under load control on the
+    periodic unit square: a half-space, or with ``thickness`` its confined layer (Carbone & Mangialardi 2008, eq.
+    A.30; 2D only, the 1D Green's function ignores ``thickness``).
+
+    Its conventions, read from ``FFTElasticHalfSpace.py`` and ``ConstrainedConjugateGradients.py`` (1.8.3):
+    ``young`` is Young's modulus when ``poisson`` is given (``contact_modulus = young / (1 - poisson**2)``);
+    ``external_force`` is the total compressive force (mean pressure x area); ``jac`` is the compressive-positive
+    force per node, so pressure = jac / node area. One tolerance drives its three criteria: ``pentol = tol h_rms``,
+    ``forcetol = tol p A_node``, ``thermotol = tol``.
+    """
+    import ContactMechanics as cm
+    from SurfaceTopography import Topography
+
+    h = np.ascontiguousarray(heights, dtype=float)
+    node = 1.0 / h.size
+    t0 = time.perf_counter()
+    substrate = cm.PeriodicFFTElasticHalfSpace(h.shape, E, physical_sizes=(1.0, 1.0), thickness=thickness, poisson=nu)
+    system = cm.make_system(substrate=substrate, surface=Topography(h, physical_sizes=(1.0, 1.0), periodic=True))
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        sol = system.minimize_proxy(external_force=mean_pressure * 1.0, pentol=tol * float(np.std(h)),
+                                    forcetol=tol * mean_pressure * node, thermotol=tol, maxiter=max_iter)
+    dt = time.perf_counter() - t0
+    return {"pressure": np.asarray(sol.jac).reshape(h.shape) / node, "iterations": int(sol.nit), "seconds": dt,
+            "converged": bool(sol.success), "message": sol.message,
+            "greens_function": np.asarray(substrate.greens_function)}
+
+
+class ContactMechanicsPeer(Peer):
+    """ContactMechanics' constrained_conjugate_gradients (Polonsky-Keer), :func:`contactmechanics_solve`."""
+
+    name = "contactmechanics"
+    tol_meaning = "pentol = tol*h_rms, forcetol = tol*p_mean*pixel area, thermotol = tol"
+
+    @staticmethod
+    def available():
+        try:
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore")
+                import ContactMechanics  # noqa: F401
+                import SurfaceTopography  # noqa: F401
+        except Exception:
+            return False
+        return True
+
+    @staticmethod
+    def version():
+        return dist_version("ContactMechanics")
+
+    def solve(self, heights, mean_pressure, tol, *, max_iter=100_000):
+        out = contactmechanics_solve(heights, mean_pressure=mean_pressure, E=self.E, nu=self.nu, tol=tol,
+                                     max_iter=max_iter)
+        if not out["converged"] and out["iterations"] < max_iter:
+            raise RuntimeError(f"ContactMechanics did not converge: {out['message']}")
+        return Solution(out["pressure"], out["iterations"], out["seconds"], out["converged"])
+
+
+PEERS = {"contactlib": Contactlib, "tamaas": Tamaas, "contactmechanics": ContactMechanicsPeer}
+
+
+# ------------------------------------------------------------------------------ contactlib's internals (issue 39)
+
+def prepared_problem(heights, *, material, mean_pressure=None, penetration=None, **options):
+    """A validated scene with its operators, as :func:`contactlib.solve` builds it, for the benchmarks that time
+    one solver of a non-symmetric problem alone (:func:`nonsymmetric_solve`). ``options``: any other keyword of
+    ``solve`` (``friction``, ``layer``, ``sliding_velocity``, ``tol``, ``max_iter``, ...)."""
+    # issue 39: switch to contactlib.prepare once it lands
+    from contactlib.contact import _setup
+
+    friction = options.get("friction", 0.0)
+    keywords = dict(periodic=True, tol=1e-8, max_iter=10_000, kernel="spectral", method="cg", length=None,
+                    initial_pressure=None, target_error=None, layer=None, friction=0.0,
+                    sliding_direction=0.0 if friction else None, sliding_velocity=None)
+    keywords.update(options)
+    return _setup(heights, material=material, mean_pressure=mean_pressure, penetration=penetration, **keywords)
+
+
+def nonsymmetric_solve(problem, route: str, **kwargs):
+    """One route of a prepared non-symmetric problem: ``"dispatch"`` (what ``solve`` runs), ``"krylov"``
+    (semismooth GMRES; ``kwargs`` e.g. ``first_try=True``), ``"splitting"`` (Douglas-Rachford as the dispatch runs
+    it), ``"coupled"`` (the fixed point on the skew part) or ``"douglas-rachford"`` (the bare splitting solver on
+    :func:`complex_multiplier`, or on ``kwargs["multiplier"]``). Returns the solver's state."""
+    # issue 39: switch to contactlib.prepare once it lands (Problem.solve and the operator as public attributes)
+    if route == "dispatch":
+        return problem.run()
+    if route == "krylov":
+        return problem._krylov(**kwargs)
+    if route == "splitting":
+        return problem._splitting()
+    if route == "coupled":
+        from contactlib.solvers import solve_coupled
+
+        return solve_coupled(problem._symmetric, problem.body.coupling, problem.values, **problem.solver_args)
+    if route == "douglas-rachford":
+        from contactlib.solvers.splitting import solve_splitting
+
+        multiplier = kwargs.get("multiplier")  # computed once by the caller, outside its timing
+        multiplier = complex_multiplier(problem) if multiplier is None else multiplier
+        return solve_splitting(multiplier, problem.values, mean_pressure=problem.solver_args["mean_pressure"],
+                               tol=problem.solver_args["tol"])
+    raise ValueError("route must be 'dispatch', 'krylov', 'splitting', 'coupled' or 'douglas-rachford', "
+                     f"got {route!r}")
+
+
+def complex_multiplier(problem) -> np.ndarray:
+    """The Fourier multiplier of a prepared problem's body, its coupling included (complex where it is skew)."""
+    # issue 39: switch to contactlib.prepare once it lands (the operator as a public attribute)
+    from contactlib.solvers.splitting import fourier_multiplier
+
+    return fourier_multiplier(problem.body.compliance, problem.body.coupling)
+
+
+def iteration_internals(transforms, shape) -> SimpleNamespace:
+    """The parts of one Polonsky-Keer iteration, for ``bench_iteration`` to time alone: the transforms' workspace
+    and offset, the fused element-wise sweeps chosen for ``shape`` (serial or threaded) and the two compiled passes
+    over a spectrum. These are implementation kernels with no public route: timing them alone is the point."""
+    from contactlib import operators
+    from contactlib.solvers import _fused
+
+    sweeps = _fused.select(shape)
+    return SimpleNamespace(
+        workspace=transforms._workspace, offset=transforms._offset, sweeps=sweeps,
+        threaded=sweeps is _fused.THREADED,
+        affine_pass=lambda rows: operators._spectrum_pass(operators._affine_spectrum, rows),
+        scale_power_pass=lambda rows: operators._spectrum_pass(operators._scale_and_power_sum, rows))
