@@ -2,8 +2,8 @@
 non-adhesive contactlib solves.
 
 Scene (:func:`contactlib.testing.adhesive_rough_scene`, that of the tamaas test): a periodic self-affine surface
-(Hurst 0.8, rolloff 4, cutoff 32 wavelengths, rms slope 0.1) on ``N x N``, ``E = 1``, ``nu = 0``, mean pressure 0.01, work 1e-5, range 1e-3 (process zone 5 elements at
-N = 256). Both laws. Tolerances: tamaas 1e-10 on its own residual, contactlib 1e-8 on its scale-free one
+(Hurst 0.8, rolloff 4, cutoff 32 wavelengths, rms slope 0.1) on ``N x N``, ``E = 1``, ``nu = 0``, mean
+pressure 0.01, work 1e-5, range 1e-3 (process zone 5 elements at N = 256). Both laws. Tolerances: tamaas 1e-10 on its own residual, contactlib 1e-8 on its scale-free one
 (the tamaas test agrees within 1e-3 in area and mean gap at these). Prints medians over ``--repeats``
 runs (a warm-up first; tamaas' from ``--peer-warm-up-below`` on is not warmed up: minutes a solve), the ratio
 contactlib / tamaas measured in the same run, the adhesive / non-adhesive ratio (the two interleaved, medians),
@@ -48,8 +48,8 @@ def main(argv=None):
             if args.peer_repeats == 0:
                 t_peer, peer = float("nan"), {"contact_area": float("nan"), "mean_gap": float("nan")}
             else:
-                t_peer, peer = timed(lambda: solve_tamaas(h.values, E=1.0, nu=0.0, work=work, range_=range_, model=model,
-                                                          mean_pressure=load, tol=1e-10),
+                t_peer, peer = timed(lambda: solve_tamaas(h.values, E=1.0, nu=0.0, work=work, range_=range_,
+                                                          model=model, mean_pressure=load, tol=1e-10),
                                      args.repeats if args.peer_repeats is None else args.peer_repeats,
                                      warm=n < args.peer_warm_up_below)
             # the adhesive and the plain solve interleaved, so that both see the same load on the machine
