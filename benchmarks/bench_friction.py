@@ -50,8 +50,9 @@ import numpy as np
 
 import contactlib
 
-from .common import (ContactMechanicsPeer, calibrate_load, contactmechanics_solve, dist_version, host_info, ladder,
-                     rel_l2, self_affine_surface, write_json as write_payload)
+from .common import (calibrate_load, dist_version, host_info, ladder, rel_l2, self_affine_surface,
+                     write_json as write_payload)
+from .peers import ContactMechanicsPeer, contactmechanics_solve
 
 MAX_REPEATS = 15
 """Most timed solves of one configuration (reached only by solves far shorter than ``--min-time``)."""

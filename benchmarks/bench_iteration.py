@@ -41,7 +41,8 @@ from contactlib.grid import Grid
 from contactlib.operators import Compliance, weighted_power_sum
 from contactlib.solvers import solve_polonsky_keer
 
-from .common import Contactlib, iteration_internals, pressure_for_area, self_affine_array, timed
+from .common import iteration_internals, pressure_for_area, self_affine_array, timed
+from .peers import Contactlib
 
 
 @numba.njit(cache=True, nogil=True, fastmath={"reassoc", "contract", "nsz"})

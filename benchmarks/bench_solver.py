@@ -43,8 +43,9 @@ import numpy as np
 
 from contactlib import fft as cfft
 
-from .common import (PEERS, REPO, Contactlib, Peer, Solution, child_command, host_info, ladder, pressure_for_area,
-                     rel_l2, self_affine_array, write_json as write_payload)
+from .common import (REPO, child_command, host_info, ladder, pressure_for_area, rel_l2, self_affine_array,
+                     write_json as write_payload)
+from .peers import PEERS, Contactlib, Peer, Solution
 from .common import contact_fraction as area
 
 
