@@ -68,8 +68,8 @@ class Anderson:
     Notes
     -----
     A call (:meth:`next`, or ``mixer(x, image)``) records the differences from the last call and returns the next
-    iterate. Fields may have any shape; the ones carried along (:meth:`next`'s ``carried``) are mixed with the same
-    weights and come back after it.
+    iterate. Fields may have any shape; the ones carried along (:meth:`next`'s ``carried``: images of the ``T``'s
+    under a linear map, with ``beta = 1`` and no bounds) are mixed with the same weights and come back after it.
     """
 
     def __init__(self, memory: int, *, beta: float = 1.0, bounds: tuple[float, float] | None = None,
@@ -133,6 +133,8 @@ class Anderson:
             if carried or x is None:
                 raise ValueError("the fused mixer needs the iterate x and carries no other fields")
             return self._fused_next(x, image)
+        if carried and (self.beta != 1.0 or self.bounds is not None):  # L of a relaxed or clipped step is not known
+            raise ValueError("carried fields need beta = 1 and no bounds")
         if f is None:
             if x is None:
                 raise ValueError("give the residual f or the iterate x")
