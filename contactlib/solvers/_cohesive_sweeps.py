@@ -3,9 +3,9 @@
 Each round of :class:`contactlib.solvers.cohesive._FrozenTraction` evaluates the cohesive law at the new
 gap, the residual of the state, and an Anderson mixing step: in numpy some thirty passes over the grid
 and their temporaries, which cost as much per round as one or two Polonsky-Keer iterations (256^2). Here
-they are three sweeps. Arrays are flat and contiguous, except in :func:`frozen_state` and
-:func:`move_heights`, the two sweeps of a round inside a running Polonsky-Keer solve
-(:mod:`.cohesive_rounds`), which read and write its buffers as 2D (maybe strided) views.
+they are three sweeps: :func:`law_residual` and the fused :class:`.anderson.Anderson`'s two. Arrays are flat and
+contiguous, except in :func:`frozen_state` and :func:`move_heights`, the two sweeps of a round inside a running
+Polonsky-Keer solve (:mod:`.cohesive_rounds`), which read and write its buffers as 2D (maybe strided) views.
 """
 
 from __future__ import annotations
@@ -49,45 +49,6 @@ def law_residual(p, g, model, sigma0, range_, ramp, c, image):
         if gi <= range_:
             interacting += 1
     return phi_sum, overlap, comp, weight, traction, interacting
-
-
-@_jit
-def anderson_record(x, image, last_x, last_f, dx, df, row, m, gram, rhs):
-    """With ``f = image - x``: the differences ``dx[row] = x - last_x`` and ``df[row] = f - last_f`` (if
-    ``row >= 0``), then ``last_x = x``, ``last_f = f``; the Gram row ``gram[row, k] = df[row] . df[k]``
-    and ``rhs[k] = df[k] . f`` for ``k < m``. One sweep writes, then one contiguous pass per stored row."""
-    for i in range(x.size):
-        f = image[i] - x[i]
-        if row >= 0:
-            dx[row, i] = x[i] - last_x[i]
-            df[row, i] = f - last_f[i]
-        last_x[i] = x[i]
-        last_f[i] = f
-    for k in range(m):
-        dk = df[k]
-        s_f = 0.0
-        s_row = 0.0
-        for i in range(x.size):
-            s_f += dk[i] * last_f[i]
-            s_row += dk[i] * df[row, i]
-        rhs[k] = s_f
-        if row >= 0:
-            gram[row, k] = s_row
-            gram[k, row] = s_row
-
-
-@_jit
-def anderson_mix(x, image, dx, df, gamma, m, beta, lower, upper, out):
-    """``out = x + beta f - sum_k gamma_k (dx[k] + beta df[k])``, ``f = image - x`` (``beta = 1``: ``image -
-    sum_k gamma_k (dx[k] + df[k])``), clipped to ``[lower, upper]``: one contiguous pass per stored row."""
-    for i in range(x.size):
-        out[i] = x[i] + beta * (image[i] - x[i])
-    for k in range(m):
-        gk = gamma[k]
-        for i in range(x.size):
-            out[i] -= gk * (dx[k, i] + beta * df[k, i])
-    for i in range(x.size):
-        out[i] = min(max(out[i], lower), upper)
 
 
 @_jit

@@ -58,6 +58,7 @@ import numpy as np
 
 from . import _cohesive_sweeps as sweeps
 from ..adhesion import MAUGIS_RAMP
+from .anderson import Anderson
 from .ccg import solve_polonsky_keer
 from .cohesive_newton import GMRES_ITERATIONS, CohesiveNewton
 from .cohesive_rounds import Rounds
@@ -96,6 +97,9 @@ ANDERSON_BETA = 1.3
 the plain step. On the benchmark scene (``benchmarks/bench_adhesion.py``, iterations / rounds, exponential and
 Maugis) 256^2: 0.5 45/15 and 57/19, 1 39/13 and 42/14, 1.3 36/12 and 39/13, 1.5 39/13 and 39/13, 2 42/14 and
 36/12; 512^2: 1 45/15 both, 1.3 42/14 both."""
+
+ANDERSON_RIDGE = 1e-14
+"""Relative ridge of the mixing's normal equations (:class:`.anderson.Anderson`)."""
 
 MAX_ROUNDS = 100
 """Bound on the rounds of the frozen-traction iteration before the Newton solve takes over."""
@@ -321,7 +325,9 @@ class _FrozenTraction:
                 delta = float(np.min(self.op(p) + self.measure.h0))
             a = law.traction(self.op(p) + self.measure.h0 - delta)
             q = np.maximum(p - a, 0.0)
-        self.mix = _Anderson(heights.size, -law.peak_stress, 0.0)
+        # the traction stays within the law's, [-sigma_0, 0]; a round on a large grid wants the fused sweeps
+        self.mix = Anderson(ANDERSON_DEPTH, beta=ANDERSON_BETA, bounds=(-law.peak_stress, 0.0), ridge=ANDERSON_RIDGE,
+                            fused=True)
         self.image = np.empty_like(heights)  # the law's traction at the last gap
         self.inner_tol, self.history, self.rounds, self.residual = FIRST_INNER_TOL, [], 0, np.inf
         result = self._continued(a, q) if self.continued else self._restarted(a, q)
@@ -408,35 +414,3 @@ class _FrozenTraction:
             residual = max(residual, abs(float(p.mean()) - m.load) / m.pscale)
         return residual
 
-
-class _Anderson:
-    """Anderson mixing of the fixed point ``x = T(x)`` of fields, kept within ``[lower, upper]``: the last
-    :data:`ANDERSON_DEPTH` differences of the iterates and of their residuals ``T(x) - x`` in ring
-    buffers, the least-squares weights from their Gram matrix, updated by one row a round (fused sweeps,
-    :mod:`._cohesive_sweeps`: numpy's passes and BLAS dot products, whose threads wait for busy cores,
-    cost as much a round as an FFT pair)."""
-
-    def __init__(self, size, lower, upper):
-        self.dx = np.zeros((ANDERSON_DEPTH, size))
-        self.df = np.zeros((ANDERSON_DEPTH, size))
-        self.last_x, self.last_f = np.zeros(size), np.zeros(size)
-        self.gram = np.zeros((ANDERSON_DEPTH, ANDERSON_DEPTH))
-        self.rhs = np.zeros(ANDERSON_DEPTH)
-        self.lower, self.upper = float(lower), float(upper)
-        self.rounds = 0
-
-    def __call__(self, x, image):
-        """The next iterate from ``x`` and ``T(x)`` (``image``), both of the same shape."""
-        shape = x.shape
-        x, image = np.ascontiguousarray(x).ravel(), np.ascontiguousarray(image).ravel()
-        row = (self.rounds - 1) % ANDERSON_DEPTH if self.rounds else -1
-        m = min(self.rounds, ANDERSON_DEPTH)
-        sweeps.anderson_record(x, image, self.last_x, self.last_f, self.dx, self.df, row, m, self.gram, self.rhs)
-        self.rounds += 1
-        if m == 0:
-            return np.clip(x + ANDERSON_BETA * (image - x), self.lower, self.upper).reshape(shape)
-        gram = self.gram[:m, :m]
-        gamma = np.linalg.lstsq(gram + 1e-14 * np.trace(gram) * np.eye(m), self.rhs[:m], rcond=None)[0]
-        out = np.empty_like(x)
-        sweeps.anderson_mix(x, image, self.dx, self.df, gamma, m, ANDERSON_BETA, self.lower, self.upper, out)
-        return out.reshape(shape)

@@ -37,10 +37,14 @@ from collections.abc import Callable
 
 import numpy as np
 
-from .state import ContactState, contact_residual, dot, height_scale, mixing_coefficients
+from .anderson import Anderson
+from .state import ContactState, contact_residual, height_scale
 
 ANDERSON_MEMORY = 8
 """Past iterates kept by the Anderson mixing (each three fields: pressure, residual, ``W`` pressure)."""
+
+ANDERSON_RIDGE = 1e-12
+"""Relative ridge of the mixing's normal equations (:class:`.anderson.Anderson`)."""
 
 MAX_OUTER = 300
 """Outer iterations before the solve is returned as not converged."""
@@ -97,7 +101,7 @@ def solve_coupled(
     x = np.zeros_like(heights) if initial_pressure is None else np.maximum(initial_pressure, 0.0)
     Wx = coupling(x)
     warm = None if initial_pressure is None else x
-    mixer = _Anderson(memory)
+    mixer = Anderson(memory, ridge=ANDERSON_RIDGE)  # unit step: the next input y_k - dY gamma, W y with it
     total, residual, best, best_k = 0, np.inf, np.inf, 0
     inner_tol = max(tol, 1e-4) if initial_pressure is None else tol
     state = None
@@ -129,40 +133,5 @@ def solve_coupled(
     return state
 
 
-class _Anderson:
-    """Anderson type-II mixing with unit relaxation (Walker & Ni 2011): the next input is
-    ``y_k - dY gamma`` (and its ``W`` image ``W y_k - dWY gamma``), ``gamma`` minimising
-    ``|f_k - dF gamma|`` over the last ``memory`` differences. The Gram matrix of ``dF`` is updated by
-    one row per iteration (least squares of a tall matrix cost more than the inner solve on 512^2)."""
 
-    def __init__(self, memory: int):
-        self.memory = memory
-        self.last = None  # (y, f, W y) of the previous iteration
-        self.diffs: list[tuple[np.ndarray, np.ndarray, np.ndarray]] = []
-        self.gram = np.zeros((0, 0))
-
-    def next(self, y: np.ndarray, f: np.ndarray, Wy: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        if self.last is not None:
-            y0, f0, Wy0 = self.last
-            df = f - f0
-            if len(self.diffs) == self.memory:
-                self.diffs.pop(0)
-                self.gram = self.gram[1:, 1:]
-            row = np.array([dot(d[1], df) for d in self.diffs] + [dot(df, df)])
-            m = len(self.diffs) + 1
-            gram = np.empty((m, m))
-            gram[:-1, :-1], gram[-1, :], gram[:, -1] = self.gram, row, row
-            self.gram = gram
-            self.diffs.append((y - y0, df, Wy - Wy0))
-        self.last = (y, f, Wy)
-        x, Wx = y.copy(), Wy.copy()
-        if not self.diffs:
-            return x, Wx
-        gamma = mixing_coefficients(self.gram, np.array([dot(d[1], f) for d in self.diffs]), 1e-12)
-        if gamma is None:  # degenerate differences: the plain step, and a fresh memory
-            self.diffs, self.gram = [], np.zeros((0, 0))
-            return x, Wx
-        for g, (dy, _, dWy) in zip(gamma, self.diffs):
-            x -= g * dy
-            Wx -= g * dWy
-        return x, Wx
+_Anderson = Anderson  # the name tests/test_splitting.py imports

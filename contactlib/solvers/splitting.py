@@ -44,7 +44,8 @@ import numpy as np
 
 from .. import fft
 from ..kernels.viscoelastic import real_where_self_conjugate
-from .state import ContactState, contact_residual, height_scale, mixing_coefficients
+from .anderson import Anderson
+from .state import ContactState, contact_residual, height_scale
 
 BALANCE_FACTOR = 10.0
 """``gamma = BALANCE_FACTOR |p| / |g|``: measured best within 3x on E_inf/E0 = 1000, V tau q0 = 1e-3, 1e-2."""
@@ -68,6 +69,9 @@ at V tau q0 = 1e-4 .. 1e-2 (ratio 15.8) stalls there (residual 1e-5 .. 0.6) and 
 
 ANDERSON_MEMORY = 10
 """Past differences kept by the Anderson mixing."""
+
+ANDERSON_RIDGE = 1e-10
+"""Relative ridge of the mixing's normal equations (:class:`.anderson.Anderson`)."""
 
 FINISH_FIRST = 1000
 """Iterations before the first try of ``finish`` (:func:`solve_splitting`); then after twice as many, and so on,
@@ -198,10 +202,8 @@ def solve_splitting(
     gamma = BALANCE_FACTOR * typical / scale
     inverse = 1.0 / (1.0 + gamma * multiplier)
     z = p0.copy()  # gap 0 guess
-    mixer = _Anderson(memory)
+    mixer = Anderson(memory, ridge=ANDERSON_RIDGE)
     best, d, state_fields = np.inf, 0.0, None
-    plain_next = None
-    last_norm = np.inf
     it, finish_at, finish_iterations, best_at, tried = 0, FINISH_FIRST, 0, 0, set()
 
     def finished(p, residual, of, done):
@@ -224,15 +226,10 @@ def solve_splitting(
         y = fft.irfftn(y_hat, shape)
         Tz = z + y - p
         f = y - p
-        norm = _norm(f)
-        if mixer.active and norm > last_norm and plain_next is not None:
-            # safeguard: the mixed step did not lower the fixed-point residual: take the plain step instead
-            mixer.reset()
-            z = plain_next
-            plain_next = None
-            last_norm = np.inf
+        plain = mixer.retreat(f)
+        if plain is not None:  # safeguard: the mixed step did not lower the fixed-point residual: the plain one
+            z = plain
             continue
-        last_norm = norm
         if it % CHECK_EVERY == 0:
             fields = evaluate(p, d)
             if fields[3] < best:
@@ -254,9 +251,7 @@ def solve_splitting(
                     inverse = 1.0 / (1.0 + gamma * multiplier)
                     z = p - gamma * g
                     mixer.reset()
-                    plain_next, last_norm = None, np.inf
                     continue
-        plain_next = Tz
         z = mixer.next(Tz, f) if memory > 0 else Tz
     if state_fields is None:  # stopped before the first check
         state_fields = (evaluate(np.maximum(z, 0.0), d), d)
@@ -279,47 +274,5 @@ def _norm(a: np.ndarray) -> float:
     return float(np.sqrt(_dot(a, a)))
 
 
-class _Anderson:
-    """Anderson type-II mixing: the next iterate is ``T z_k - dT gamma``, ``gamma`` minimising
-    ``|f_k - dF gamma|`` over the last ``memory`` differences (normal equations with a relative ridge)."""
 
-    def __init__(self, memory: int):
-        self.memory = memory
-        self.reset()
-
-    def reset(self):
-        self.last = None
-        self.dT: list[np.ndarray] = []
-        self.dF: list[np.ndarray] = []
-        self.gram = np.zeros((0, 0))
-
-    @property
-    def active(self) -> bool:
-        return bool(self.dF)
-
-    def next(self, Tz: np.ndarray, f: np.ndarray) -> np.ndarray:
-        if self.last is not None:
-            T0, f0 = self.last
-            df = f - f0
-            if len(self.dF) == self.memory:
-                self.dT.pop(0)
-                self.dF.pop(0)
-                self.gram = self.gram[1:, 1:]
-            row = np.array([_dot(d, df) for d in self.dF] + [_dot(df, df)])
-            m = len(self.dF) + 1
-            gram = np.empty((m, m))
-            gram[:-1, :-1], gram[-1, :], gram[:, -1] = self.gram, row, row
-            self.gram = gram
-            self.dT.append(Tz - T0)
-            self.dF.append(df)
-        self.last = (Tz, f)
-        if not self.dF:
-            return Tz
-        coefficients = mixing_coefficients(self.gram, np.array([_dot(d, f) for d in self.dF]), 1e-10)
-        if coefficients is None:  # degenerate differences: the plain step, and a fresh memory
-            self.reset()
-            return Tz
-        out = Tz.copy()
-        for c, dT in zip(coefficients, self.dT):
-            out -= c * dT
-        return out
+_Anderson = Anderson  # the name tests/test_splitting.py imports

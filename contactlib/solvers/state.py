@@ -61,16 +61,3 @@ def dot(a: np.ndarray, b: np.ndarray) -> float:
     (2 cores): every inner product of the solvers' loops goes through numpy's own loop instead."""
     return float(np.einsum("i,i->", a.ravel(), b.ravel()))
 
-
-def mixing_coefficients(gram: np.ndarray, rhs: np.ndarray, ridge: float) -> np.ndarray | None:
-    """Anderson mixing's coefficients: ``(G + ridge tr(G) I)^-1 rhs`` for the Gram matrix ``G`` of the residual
-    differences (the relative ridge keeps the normal equations solvable when differences become parallel); None
-    where the differences are degenerate (a zero or non-finite trace: the iterate stands still, or a singular
-    system), where the mixer should take the plain step and start its memory again."""
-    scale = float(np.trace(gram))
-    if not (np.isfinite(scale) and scale > 0):
-        return None
-    try:
-        return np.linalg.solve(gram + ridge * scale * np.eye(len(rhs)), rhs)
-    except np.linalg.LinAlgError:
-        return None
