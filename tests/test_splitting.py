@@ -310,7 +310,7 @@ def test_off_axis_sliding_near_full_contact_converges():
 def test_anderson_mixing_with_no_change_takes_the_plain_step():
     """Two equal fixed-point residuals in a row give a zero Gram matrix: the mixing raised numpy's LinAlgError
     ("Singular matrix"), which solve passed on as a ValueError naming nothing; it now takes the plain step."""
-    from contactlib.solvers.splitting import _Anderson
+    from contactlib.solvers.anderson import Anderson as _Anderson
 
     mixer = _Anderson(3)
     f, Tz = np.ones(8), np.arange(8.0)
@@ -321,7 +321,7 @@ def test_anderson_mixing_with_no_change_takes_the_plain_step():
 def test_coupled_anderson_mixing_with_no_change_takes_the_plain_step():
     """The fixed point's Anderson mixing, as Douglas-Rachford's: a zero Gram matrix (an iterate that stands still)
     gives the plain step instead of numpy's LinAlgError."""
-    from contactlib.solvers.coupled import _Anderson
+    from contactlib.solvers.anderson import Anderson as _Anderson
 
     mixer = _Anderson(3)
     y, f, Wy = np.arange(8.0), np.ones(8), np.zeros(8)

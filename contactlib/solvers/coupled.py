@@ -134,4 +134,3 @@ def solve_coupled(
 
 
 
-_Anderson = Anderson  # the name tests/test_splitting.py imports

@@ -275,4 +275,3 @@ def _norm(a: np.ndarray) -> float:
 
 
 
-_Anderson = Anderson  # the name tests/test_splitting.py imports
