@@ -131,6 +131,3 @@ def solve_coupled(
         warm = y
         inner_tol = max(tol / 4, min(inner_tol, INNER_TOL_FACTOR * residual))
     return state
-
-
-

@@ -272,6 +272,3 @@ def _dot(a: np.ndarray, b: np.ndarray) -> float:
 
 def _norm(a: np.ndarray) -> float:
     return float(np.sqrt(_dot(a, a)))
-
-
-
