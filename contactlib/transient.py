@@ -1,7 +1,7 @@
 """Viscoelastic contact in time: :func:`solve_transient`, any load history and in-plane path (the stepper
 that :func:`contactlib.reciprocating.solve_reciprocating` drives cycle by cycle).
 
-Each step is one elastic contact solve (:func:`contactlib.contact.constrained_solve`, warm-started from
+Each step is one elastic contact solve (:func:`contactlib.solvers.symmetric_choice.constrained_solve`, warm-started from
 the previous step) with the step's effective modulus, on heights lowered by the displacement the body's
 memory alone would give (:mod:`contactlib.hereditary`: the rule, its order, its exact cases). The rigid
 surface moves along ``path`` by a phase factor on its spectrum, ``h(x - X(t))``: no re-gridding. Per step:
@@ -33,7 +33,7 @@ import xarray as xr
 from ._version import __version__
 from .analysis.friction import directional_slope
 from .bodies import Layer, body_model
-from .contact import ConvergenceError, constrained_solve
+from .contact import ConvergenceError
 from .hereditary import PronyHistory
 from .kernels.nyquist import even_on_nyquist
 from .invariants import check_relaxed_limit, contact_checks, relaxed_hold, step_invariants, verify, with_dataset
@@ -42,6 +42,7 @@ from .inputs import check_friction, check_iterations, check_tolerance, check_who
 from .labels import attrs_for
 from .materials import Elastic, material_of
 from .solvers.state import height_scale
+from .solvers.symmetric_choice import constrained_solve
 from .resolution import guard_stepper
 
 log = logging.getLogger(__name__)
