@@ -143,7 +143,7 @@ def grid_of(heights, length=None) -> tuple[np.ndarray, Grid, tuple[str, ...], di
     if isinstance(heights, xr.DataArray):
         values = real_values(heights.values, "heights")
         dims = tuple(heights.dims)
-        window = _window_of(heights) if all(d in heights.coords for d in dims) else None
+        window = window_of(heights) if all(d in heights.coords for d in dims) else None
         if length is None:
             if window is None:
                 missing = next(d for d in dims if d not in heights.coords)
@@ -178,7 +178,7 @@ def grid_of(heights, length=None) -> tuple[np.ndarray, Grid, tuple[str, ...], di
     return np.ascontiguousarray(values), grid, dims, coords
 
 
-def _window_of(heights: xr.DataArray) -> tuple[float, ...]:
+def window_of(heights: xr.DataArray) -> tuple[float, ...]:
     """The window lengths of a DataArray's coordinates (step times points), refused unless each coordinate is
     finite, increasing and evenly spaced (the FFT grid's)."""
     lengths = []
