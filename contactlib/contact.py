@@ -44,7 +44,9 @@ def solve(
     adhesion=None,
 ) -> xr.Dataset:
     """Normal contact of a rigid rough surface on an elastic or viscoelastic half-space or layer, with
-    Coulomb friction and steady sliding.
+    Coulomb friction and steady sliding: ``prepare(heights, **scene).solve(mean_pressure=..., penetration=...,
+    initial_pressure=...)`` (:func:`contactlib.prepare`), the scene being every argument but the load and the warm
+    start.
 
     Parameters
     ----------

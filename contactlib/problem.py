@@ -129,7 +129,7 @@ class Problem:
                 raise ValueError("initial_pressure contains NaN or infinite values")
         if not self.operator.definite and penetration is not None:
             check_below_full_contact(penetration, scene.values)
-        items = list(self.attrs.items())
+        items = [(k, list(v) if isinstance(v, list) else v) for k, v in self.attrs.items()]  # a Dataset's own lists
         at = [k for k, _ in items].index("E_star") + 1  # where solve has always put it
         control = "mean_pressure" if mean_pressure is not None else "penetration"
         attrs = dict(items[:at] + [("load_control", control)] + items[at:])
