@@ -56,7 +56,7 @@ class ConvergenceError(RuntimeError):
         self.datasets = None
 
 
-@dataclasses.dataclass(eq=False)
+@dataclasses.dataclass(eq=False, repr=False)
 class Problem:
     """A validated contact scene, its body's operators and its caches (:func:`prepare`); solve it with
     :meth:`solve`.
@@ -83,6 +83,11 @@ class Problem:
     coords = property(lambda self: self.scene.coords)
     method = property(lambda self: self.scene.method)
     adhesion = property(lambda self: self.scene.adhesion)
+
+    def __repr__(self) -> str:
+        load = {k: v for k, v in self.solver_args.items() if k in ("mean_pressure", "penetration") and v is not None}
+        return (f"Problem(shape={self.grid.shape}, lengths={self.grid.lengths}, model={self.attrs['model']!r}, "
+                f"tol={self.scene.tol!r}{''.join(f', {k}={v!r}' for k, v in load.items())})")
 
     @property
     def operator(self):
