@@ -3,8 +3,9 @@
 Kept apart from :mod:`contactlib.problem`, which calls :func:`check_scene`, :func:`check_load`, :func:`label` and
 (through :mod:`contactlib.adhesive_choice`) :func:`run` or :func:`run_energy`, and nothing else. The cohesive laws go
 to :func:`contactlib.solvers.cohesive.solve_cohesive` with the scene's compliance (half-space or layer, periodic or
-zero-padded); ``"jkr"`` to the energy method of :mod:`contactlib.solvers.energy` on the compliance matrix of the profile or sphere (reduced to the orbits of
-its symmetries), which :func:`family` builds to the largest domain the window holds.
+zero-padded); ``"jkr"`` to the energy method of :mod:`contactlib.solvers.energy` on the compliance matrix of the
+profile or sphere (reduced to the orbits of its symmetries), which :func:`family` builds to the largest domain the
+window holds.
 """
 
 from __future__ import annotations
