@@ -40,14 +40,13 @@ import time
 import numpy as np
 import xarray as xr
 
-from . import adhesive_contact
+from . import adhesive_choice, adhesive_contact
 from ._version import __version__
 from .adhesion import Adhesion
-from .contact import _setup, periodic_of
 from .invariants import adhesive_state_holds, verify_path
 from .inputs import check_below_full_contact, real_values
 from .labels import attrs_for
-from .materials import material_of
+from .problem import prepare
 from .resolution import guard_path
 
 
@@ -110,12 +109,10 @@ def adhesion_curve(
         raise ValueError(f"{name} must hold at least 2 finite, strictly increasing values")
     path = np.concatenate([values, values[::-1][1:]])
     unloading = np.concatenate([np.zeros(values.size), np.ones(values.size - 1)]).astype(int)
-    periodic = periodic_of(heights, periodic)
     first = {"mean_pressure": float(path[0])} if load_control else {"penetration": float(path[0])}
-    setup = _setup(heights, material=material_of(material, E, nu), periodic=periodic, tol=tol, max_iter=10_000,
-                   kernel=kernel, method="cg", length=length, initial_pressure=None, target_error=None, layer=layer,
-                   friction=0.0, sliding_direction=None, sliding_velocity=None, adhesion=adhesion,
-                   **({"mean_pressure": None, "penetration": None} | first))
+    problem = prepare(heights, E=E, nu=nu, material=material, layer=layer, adhesion=adhesion, periodic=periodic,
+                      length=length, tol=tol, max_iter=10_000, kernel=kernel, method="cg")
+    setup = problem.loaded(**first)  # the path's first load: its checks; each step sets its own
     if not load_control and not setup.body.compliance.definite:
         # as solve refuses one such penetration (its steps failed one by one, the path's scalars NaN)
         check_below_full_contact(float(values.max()), setup.values, "penetrations",
@@ -148,8 +145,8 @@ def _cohesive_step(setup, adhesion, args, warm, warm_d):
     for attempt in (warm, None, np.zeros_like(setup.values)):
         setup.solver_args = dict(args, initial_pressure=attempt)
         try:
-            candidate = adhesive_contact.run(setup, adhesion, warm_penetration=warm_d if attempt is not None
-                                             else None)
+            candidate = adhesive_choice.solve(setup, adhesion, warm_penetration=warm_d if attempt is not None
+                                              else None)
         except (ValueError, np.linalg.LinAlgError, FloatingPointError):
             continue
         if candidate.converged and adhesive_state_holds(candidate, setup.values, adhesion, tol=args["tol"],

@@ -1,10 +1,11 @@
 """What :func:`contactlib.solve` does with ``adhesion=``: validate, run and label an adhesive scene.
 
-Kept apart from :mod:`contactlib.contact`, which calls :func:`check`, :func:`run` and :func:`label` and
-nothing else. The cohesive laws go to :func:`contactlib.solvers.cohesive.solve_cohesive` with the
-scene's compliance (half-space or layer, periodic or zero-padded); ``"jkr"`` to the energy method of
-:mod:`contactlib.solvers.energy` on the compliance matrix of the profile or sphere (reduced to the orbits of
-its symmetries), which :func:`family` builds to the largest domain the window holds.
+Kept apart from :mod:`contactlib.problem`, which calls :func:`check_scene`, :func:`check_load`, :func:`label` and
+(through :mod:`contactlib.adhesive_choice`) :func:`run` or :func:`run_energy`, and nothing else. The cohesive laws go
+to :func:`contactlib.solvers.cohesive.solve_cohesive` with the scene's compliance (half-space or layer, periodic or
+zero-padded); ``"jkr"`` to the energy method of :mod:`contactlib.solvers.energy` on the compliance matrix of the
+profile or sphere (reduced to the orbits of its symmetries), which :func:`family` builds to the largest domain the
+window holds.
 """
 
 from __future__ import annotations
@@ -39,38 +40,41 @@ class AdhesiveState(ContactState):
     notes: tuple = ()
 
 
-def check(adhesion, values: np.ndarray, *, spacing, mean_pressure, penetration, friction, method, periodic) -> None:
-    """Refuse, naming the parameter, what the adhesive solvers do not model."""
+def check_scene(adhesion, values: np.ndarray, *, spacing, friction, method) -> None:
+    """Refuse, naming the parameter, the scenes the adhesive solvers do not model (:func:`contactlib.prepare`)."""
     if not isinstance(adhesion, Adhesion):
         raise ValueError(f"adhesion must be a contactlib.Adhesion or None, got {adhesion!r}")
-    if (mean_pressure is None) == (penetration is None):
-        raise ValueError("give exactly one of mean_pressure or penetration")
-    for name, v in (("mean_pressure", mean_pressure), ("penetration", penetration)):
-        if v is not None:
-            number(name, v)  # a finite number of either sign (tension, an approach below first contact)
     if friction:
         raise ValueError("friction: adhesion is modelled frictionless (friction=0)")
-    if mean_pressure is not None and adhesion.cohesive and mean_pressure < -adhesion.peak_stress:
-        # the tension of a point is at most sigma_0 (at any gap): so is the window's mean
-        raise ValueError(f"mean_pressure {mean_pressure!r}: a tension beyond the cohesive law's peak stress sigma_0 = "
-                         f"work / range = {adhesion.peak_stress:.4g} over the whole window, which no state carries "
-                         "(the pull-off is smaller still; contactlib.adhesion_curve finds it)")
     if method != "cg":
         raise ValueError("method: adhesion is solved by its own solvers (method='cg')")
     if adhesion.model == "jkr":
         check_symmetric(values, spacing)
 
 
+def check_load(adhesion: Adhesion, *, mean_pressure, penetration) -> None:
+    """Refuse, naming the parameter, the loads no adhesive state carries (:meth:`contactlib.Problem.solve`)."""
+    if (mean_pressure is None) == (penetration is None):
+        raise ValueError("give exactly one of mean_pressure or penetration")
+    for name, v in (("mean_pressure", mean_pressure), ("penetration", penetration)):
+        if v is not None:
+            number(name, v)  # a finite number of either sign (tension, an approach below first contact)
+    if mean_pressure is not None and adhesion.cohesive and mean_pressure < -adhesion.peak_stress:
+        # the tension of a point is at most sigma_0 (at any gap): so is the window's mean
+        raise ValueError(f"mean_pressure {mean_pressure!r}: a tension beyond the cohesive law's peak stress sigma_0 = "
+                         f"work / range = {adhesion.peak_stress:.4g} over the whole window, which no state carries "
+                         "(the pull-off is smaller still; contactlib.adhesion_curve finds it)")
+
+
 def run(setup, adhesion: Adhesion, *, warm_penetration=None) -> AdhesiveState:
-    """Solve the adhesive scene of a validated ``contactlib.contact._Setup``."""
+    """Solve the cohesive scene of a prepared :class:`contactlib.Problem` with its load (``setup``;
+    :mod:`contactlib.adhesive_choice` sends the cohesive laws here)."""
     args = setup.solver_args
-    if adhesion.model == "jkr":
-        return _run_energy(setup, adhesion, args["mean_pressure"], args["penetration"])
 
     def repulsive(h, *, mean_pressure, penetration, tol=args["tol"], max_iter=args["max_iter"],
                   initial_pressure=None):
-        return setup._symmetric(h, mean_pressure=mean_pressure, penetration=penetration, tol=tol,
-                                max_iter=max_iter, initial_pressure=initial_pressure)
+        return setup.solve_symmetric(h, mean_pressure=mean_pressure, penetration=penetration, tol=tol,
+                                     max_iter=max_iter, initial_pressure=initial_pressure)
 
     state, p_r = solve_cohesive(setup.operator, setup.values, adhesion=adhesion,
                                 mean_pressure=args["mean_pressure"], penetration=args["penetration"],
@@ -149,8 +153,8 @@ def plain_state(setup, fam: EnergyFamily | None, work: float, *, mean_pressure=N
     changes the load by about :meth:`~contactlib.solvers.energy.EnergyFamily.adhesive_load`: a
     :class:`~contactlib.ResolutionWarning` says so where that exceeds its threshold of the load."""
     args = setup.solver_args
-    state = setup._symmetric(setup.values, mean_pressure=mean_pressure, penetration=penetration, tol=args["tol"],
-                             max_iter=args["max_iter"], initial_pressure=None)
+    state = setup.solve_symmetric(setup.values, mean_pressure=mean_pressure, penetration=penetration,
+                                  tol=args["tol"], max_iter=args["max_iter"], initial_pressure=None)
     if work == 0:
         note = "work of adhesion 0: solved without adhesion (the energy method models nothing there)"
     else:
@@ -166,7 +170,8 @@ def plain_state(setup, fam: EnergyFamily | None, work: float, *, mean_pressure=N
     return AdhesiveState(**vars(state), repulsive_pressure=np.maximum(p, 0.0), in_contact=p > 0, notes=(note,))
 
 
-def _run_energy(setup, adhesion: Adhesion, mean_pressure, penetration) -> AdhesiveState:
+def run_energy(setup, adhesion: Adhesion, mean_pressure, penetration) -> AdhesiveState:
+    """Solve the ``"jkr"`` scene of a prepared :class:`contactlib.Problem` by the energy method (its load given)."""
     w = adhesion.work
     if w == 0 and (penetration is not None or mean_pressure >= 0):  # an Adhesion of zero work models nothing
         return plain_state(setup, None, w, mean_pressure=mean_pressure, penetration=penetration)

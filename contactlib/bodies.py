@@ -37,8 +37,6 @@ enough that it is positive (:data:`SHIFT_MARGIN`).
 
 from __future__ import annotations
 
-import contextlib
-import contextvars
 import dataclasses
 import math
 from dataclasses import dataclass
@@ -114,11 +112,12 @@ class BodyModel:
 
 
 def body_model(grid: Grid, *, material, layer: Layer | None, friction: float, direction: float,
-               tol: float, kernel: str, periodic: bool, velocity=None) -> BodyModel:
+               tol: float, kernel: str, periodic: bool, velocity=None, kernels: KernelCache | None = None) -> BodyModel:
     """The compliance and skew part of a scene, reduced as the module docstring says.
 
     ``material`` is a :class:`contactlib.materials.Elastic` or ``Viscoelastic``; ``velocity`` [length/time]
-    the steady sliding velocity of the rigid surface (None: no motion, the material relaxed).
+    the steady sliding velocity of the rigid surface (None: no motion, the material relaxed); ``kernels`` the
+    store of a prepared problem (:class:`KernelCache`) that keeps the half-space tensor across its solves.
     """
     nu = float(material.nu)
     limit = REDUCTION_FRACTION * tol
@@ -128,7 +127,8 @@ def body_model(grid: Grid, *, material, layer: Layer | None, friction: float, di
     if layer is not None:
         attrs.update(layer_thickness=float(layer.thickness), layer_base=layer.base)
     if not periodic and layer is not None:  # a confined layer (a plate and steady sliding are refused before)
-        return _padded_layer(grid, material=material, layer=layer, friction=friction, direction=direction, tol=tol)
+        return _padded_layer(grid, material=material, layer=layer, friction=friction, direction=direction, tol=tol,
+                             kernels=kernels)
     if not periodic:  # zero-padded half-space (steady viscoelastic sliding is refused before)
         coupled = friction > 0 and nu < 0.5
         coupling = Coupling(grid, periodic=False, friction=friction,
@@ -141,7 +141,7 @@ def body_model(grid: Grid, *, material, layer: Layer | None, friction: float, di
         # the frictionless elastic half-space: no tensor built, none held during the solve
         attrs.update(body="half-space", coupling="none", model="half-space" + note_material)
         return BodyModel(Compliance(grid, E_star=E_star, kernel=kernel, periodic=True), None, None, attrs)
-    half = _halfspace_tensor(grid, E, nu)
+    half = surface_green_tensor(grid, E, nu) if kernels is None else kernels.halfspace(grid, E, nu)
     if kernel == "love":  # Love's uniform elements (frictionless half-space only: checked by the caller)
         aliased = None if factor is None else partial(sliding_factor, material, velocity)
         love = halfspace_love_multiplier(grid, E_star, factor=aliased)  # each alias at its own frequency
@@ -165,7 +165,7 @@ def body_model(grid: Grid, *, material, layer: Layer | None, friction: float, di
                 tensor.normal.flat[0] = zero
     if E != material.E0 and tensor.normal.flat[0] > 0:
         # an elastic shortcut at the glassy modulus: the uniform compression does not move, it is relaxed
-        # (on a copy: the tensor may be a reused one, :func:`reusing_kernels`)
+        # (on a copy: the tensor may be a reused one, :class:`KernelCache`)
         tensor = dataclasses.replace(tensor, normal=tensor.normal.copy())
         tensor.normal.flat[0] *= E / material.E0
     total = tensor.normal.astype(complex)
@@ -241,7 +241,8 @@ kernel's own ripple). A criterion on the influence itself, over the element's ow
 let a layer as thick as the window through on 256^2 (penetration 2.2e-3 off) and refused thin ones on 32^2."""
 
 
-def _padded_layer(grid: Grid, *, material, layer: Layer, friction: float, direction: float, tol: float) -> BodyModel:
+def _padded_layer(grid: Grid, *, material, layer: Layer, friction: float, direction: float, tol: float,
+                  kernels: KernelCache | None = None) -> BodyModel:
     """A confined layer on a non-periodic window: the periodic model of the doubled window (:func:`body_model`, its
     reductions and friction's coupling with it), its operators applied to the window alone. Refused
     (``ValueError``) on a window narrower than :data:`LAYER_WINDOW` thicknesses. Never reduced to the half-space:
@@ -257,7 +258,7 @@ def _padded_layer(grid: Grid, *, material, layer: Layer, friction: float, direct
             "or, for a layer far thicker than the contact, leave it out (the half-space)")
     padded = grid.padded()
     doubled = body_model(padded, material=material, layer=layer, friction=friction, direction=direction, tol=tol,
-                         kernel="spectral", periodic=True)
+                         kernel="spectral", periodic=True, kernels=kernels)
     # the doubled window's transfers, now on zero-padded fields (its multipliers hold the 1 / (2N)^d of the FFT pair);
     # six thicknesses put its lowest wave at q h <= pi / 6, far from the half-space, so it is never reduced to it
     normal = doubled.compliance.transfer
@@ -271,36 +272,26 @@ def _padded_layer(grid: Grid, *, material, layer: Layer, friction: float, direct
                      None, attrs)
 
 
-_HALFSPACE: contextvars.ContextVar[list | None] = contextvars.ContextVar("halfspace_tensor", default=None)
+class KernelCache:
+    """What a prepared problem (:class:`contactlib.Problem`) keeps of its body's kernels between its solves: the
+    last half-space Green's tensor, reused for the same grid and elastic constants, so that a speed sweep builds it
+    once (four grid-sized arrays, about 1 ms at 512^2 per speed). Its arrays are read-only while kept. It lives as
+    long as the problem that holds it."""
 
+    def __init__(self):
+        self.key = None
+        self.tensor: SurfaceGreenTensor | None = None
 
-@contextlib.contextmanager
-def reusing_kernels():
-    """Within this context (this thread's), :func:`body_model` keeps the last half-space Green's tensor and
-    reuses it for the same grid and elastic constants: a speed sweep builds it once (four grid-sized arrays,
-    about 1 ms at 512^2 per speed). Its arrays are read-only while reused. Scoped so that no grid-sized array
-    outlives the sweep."""
-    token = _HALFSPACE.set([])
-    try:
-        yield
-    finally:
-        _HALFSPACE.reset(token)
-
-
-def _halfspace_tensor(grid: Grid, E: float, nu: float) -> SurfaceGreenTensor:
-    """:func:`surface_green_tensor` of the half-space, from the :func:`reusing_kernels` store when one is open
-    and holds the same grid and constants."""
-    store = _HALFSPACE.get()
-    if store is None:
-        return surface_green_tensor(grid, E, nu)
-    key = (tuple(grid.shape), tuple(float(length) for length in grid.lengths), float(E), float(nu))
-    if store and store[0][0] == key:
-        return store[0][1]
-    tensor = surface_green_tensor(grid, E, nu)
-    for array in (tensor.normal, tensor.coupling, tensor.inplane, tensor.antiplane):
-        array.flags.writeable = False
-    store[:] = [(key, tensor)]
-    return tensor
+    def halfspace(self, grid: Grid, E: float, nu: float) -> SurfaceGreenTensor:
+        """:func:`surface_green_tensor` of the half-space, the kept one where grid and constants are the same."""
+        key = (tuple(grid.shape), tuple(float(length) for length in grid.lengths), float(E), float(nu))
+        if self.tensor is not None and self.key == key:
+            return self.tensor
+        tensor = surface_green_tensor(grid, E, nu)
+        for array in (tensor.normal, tensor.coupling, tensor.inplane, tensor.antiplane):
+            array.flags.writeable = False
+        self.key, self.tensor = key, tensor
+        return tensor
 
 
 def _material_factor(grid: Grid, material, velocity, limit: float, attrs: dict):

@@ -1,52 +1,22 @@
-"""Public entry point for normal contact, elastic or viscoelastic, at rest or sliding: :func:`solve`."""
+"""Public entry points for normal contact, elastic or viscoelastic, at rest or sliding: :func:`solve` (one load) and
+:func:`solve_tolerances` (one load, several tolerances), both on a prepared :class:`contactlib.Problem`."""
 
 from __future__ import annotations
 
 import dataclasses
-import math
 import time
 
 import numpy as np
 import xarray as xr
 
-from . import accuracy, adhesive_contact, fft, resolution
-from .analysis.friction import interlocking_friction
-from ._version import __version__
-from .labels import attrs_for, to_dataset
-from .analysis.viscoelastic import traction_power
-from .materials import Elastic, Viscoelastic, contact_modulus, material_of
-from .bodies import BodyModel, Layer, body_model
-from .grid import Grid
-from .nonsymmetric import NonSymmetricSolve
-from .inputs import EDGE_TENSION, check_below_full_contact, check_friction, check_iterations, check_loads, \
-    check_tolerance, check_velocity, edge_tension, grid_of, periodic_of, real_values, round_off_floor, touches_edge
-from .operators import KERNELS
-from .solvers.coarse import PLATE_SET_FLOOR
-from .solvers import (ContactState, solve_active_set, solve_periodic_displacement, solve_polonsky_keer,
-                      solve_semismooth)
+from . import resolution
+from .bodies import Layer
+from .inputs import check_tolerance, real_values
+from .materials import Elastic, Viscoelastic
+from .problem import ConvergenceError, prepare
+from .solvers import ContactState
 
-METHODS = ("cg", "active-set")
-
-
-class ConvergenceError(RuntimeError):
-    """A solve did not reach its tolerance within ``max_iter``, or stalled before it (the CG
-    residual stopped falling, e.g. at the round-off floor of a tolerance set too tight).
-
-    Attributes
-    ----------
-    residual : float
-        The residual reached.
-    dataset : xarray.Dataset
-        The partial (unconverged) state, labelled like a converged one, ``attrs['converged'] = 0``.
-    datasets : list of xarray.Dataset or None
-        From :func:`solve_tolerances`: the answer at every tolerance asked, reached or not.
-    """
-
-    def __init__(self, message: str, *, residual: float, dataset: xr.Dataset):
-        super().__init__(message)
-        self.residual = residual
-        self.dataset = dataset
-        self.datasets = None
+__all__ = ["solve", "solve_tolerances", "ConvergenceError"]
 
 
 def solve(
@@ -74,7 +44,9 @@ def solve(
     adhesion=None,
 ) -> xr.Dataset:
     """Normal contact of a rigid rough surface on an elastic or viscoelastic half-space or layer, with
-    Coulomb friction and steady sliding.
+    Coulomb friction and steady sliding: ``prepare(heights, **scene).solve(mean_pressure=..., penetration=...,
+    initial_pressure=...)`` (:func:`contactlib.prepare`), the scene being every argument but the load and the warm
+    start.
 
     Parameters
     ----------
@@ -184,21 +156,11 @@ def solve(
     >>> 0 < float(out.contact_area) < 1
     True
     """
-    periodic = periodic_of(heights, periodic)
-    setup = _setup(heights, material=material_of(material, E, nu), mean_pressure=mean_pressure,
-                   penetration=penetration, periodic=periodic, tol=tol, max_iter=max_iter, kernel=kernel,
-                   method=method, length=length, initial_pressure=initial_pressure, target_error=target_error,
-                   layer=layer, friction=friction, sliding_direction=sliding_direction,
-                   sliding_velocity=sliding_velocity, adhesion=adhesion)
-    start = time.perf_counter()
-    state = setup.run()
-    if target_error is not None and adhesion is None:
-        state = accuracy.solve_on_for_scene(setup, state)
-    wall = time.perf_counter() - start
-    ds = setup.label(state, wall, length_unit=length_unit, pressure_unit=pressure_unit)
-    setup.check(state, ds)
-    resolution.guard_setup(setup, state, ds, where="solve", guarantee=target_error is not None)
-    return ds
+    problem = prepare(heights, E=E, nu=nu, material=material, layer=layer, friction=friction,
+                      sliding_direction=sliding_direction, sliding_velocity=sliding_velocity, adhesion=adhesion,
+                      periodic=periodic, length=length, tol=tol, max_iter=max_iter, kernel=kernel, method=method,
+                      target_error=target_error, length_unit=length_unit, pressure_unit=pressure_unit)
+    return problem.solve(mean_pressure=mean_pressure, penetration=penetration, initial_pressure=initial_pressure)
 
 
 def solve_tolerances(
@@ -246,11 +208,9 @@ def solve_tolerances(
         raise ValueError("tols must hold at least one tolerance")
     for t in tols:
         check_tolerance(t, "tols")
-    periodic = periodic_of(heights, periodic)
-    setup = _setup(heights, material=material_of(None, E, nu), mean_pressure=mean_pressure,
-                   penetration=penetration, periodic=periodic, tol=min(tols), max_iter=max_iter, kernel=kernel,
-                   method="cg", length=length, initial_pressure=initial_pressure, target_error=None, layer=None,
-                   friction=0.0, sliding_direction=None, sliding_velocity=None)
+    problem = prepare(heights, E=E, nu=nu, periodic=periodic, tol=min(tols), max_iter=max_iter, kernel=kernel,
+                      length=length, length_unit=length_unit, pressure_unit=pressure_unit)
+    setup = problem.loaded(mean_pressure=mean_pressure, penetration=penetration, initial_pressure=initial_pressure)
     pending = sorted(set(tols), reverse=True)
     found: dict[float, tuple[ContactState, float]] = {}
     paused = 0.0
@@ -274,7 +234,7 @@ def solve_tolerances(
         state, wall = found.get(t, (final, total))
         state = dataclasses.replace(state, converged=bool(state.residual <= t))
         t0 = time.perf_counter()
-        ds = setup.label(state, 0.0, length_unit=length_unit, pressure_unit=pressure_unit, tol=t)
+        ds = setup.label(state, 0.0, tol=t)
         ds.attrs["wall_time"] = wall + (time.perf_counter() - t0)
         try:
             setup.check(state, ds)
@@ -286,223 +246,3 @@ def solve_tolerances(
         failed.datasets = out
         raise failed
     return out
-
-
-@dataclasses.dataclass
-class _Setup(NonSymmetricSolve):
-    """A validated contact problem: its operator and solver arguments, and how to label the answer."""
-
-    values: np.ndarray
-    grid: Grid
-    dims: tuple
-    coords: dict
-    body: BodyModel
-    solver_args: dict
-    attrs: dict
-    method: str
-    adhesion: object = None
-
-    @property
-    def operator(self):
-        return self.body.compliance
-
-    def run(self, monitor=None, verify_below=None) -> ContactState:
-        """Solve; ``verify_below``: see :func:`contactlib.solvers.solve_periodic_displacement`."""
-        if self.adhesion is not None:
-            return adhesive_contact.run(self, self.adhesion)
-        if self.body.coupling is not None:
-            return self._run_nonsymmetric()
-        if self.method == "cg":
-            return self._symmetric(self.values, monitor=monitor, verify_below=verify_below, **self.solver_args)
-        args = {k: v for k, v in self.solver_args.items() if k != "initial_pressure"}
-        return solve_active_set(self.operator, self.values, **args)
-
-    def _symmetric(self, heights, *, monitor=None, verify_below=None, **args) -> ContactState:
-        """The constrained CG of the symmetric compliance (the whole problem, or a coupled solve's inner one)."""
-        return constrained_solve(self.operator, heights, monitor=monitor, verify_below=verify_below, **args)
-
-    def label(self, state: ContactState, wall: float, *, length_unit: str, pressure_unit: str,
-              tol: float | None = None) -> xr.Dataset:
-        extra = {}  # built with the fields: one Dataset construction, no merge per addition
-        if state.outer_iterations:
-            extra["outer_iterations"] = xr.Variable((), state.outer_iterations, attrs_for("outer_iterations"))
-        if self.attrs["friction"] > 0 or "sliding_velocity" in self.attrs:
-            extra.update(self._friction_variables(state, length_unit, pressure_unit))
-        ds = to_dataset(state, dims=self.dims, coords=self.coords, length_unit=length_unit,
-                        pressure_unit=pressure_unit, extra=extra)
-        ds.attrs.update({"solver": state.solver, **self.attrs, "converged": int(state.converged), "wall_time": wall,
-                         "contactlib_version": __version__, "window_lengths": list(self.grid.lengths)})
-        if tol is not None:
-            ds.attrs["tol"] = tol
-        if np.all(state.pressure > 0):
-            ds.attrs["full_contact"] = 1
-            ds.attrs["full_contact_message"] = ("full contact: every element carries pressure, so the contact area "
-                                                "cannot grow with the load (a thin remote-pressure layer wraps the "
-                                                "surface at a lower load than a thick one)")
-        else:
-            ds.attrs["full_contact"] = 0
-        if self.adhesion is not None:
-            adhesive_contact.label(ds, state, self.adhesion, self, length_unit=length_unit,
-                                   pressure_unit=pressure_unit)
-        return ds
-
-    def _friction_variables(self, state: ContactState, length_unit: str, pressure_unit: str) -> dict:
-        """The tangential traction ``mu_c p s`` and (periodic) the tangential displacement it and the
-        pressure cause; ``mu_a`` and ``mu = mu_c + mu_a``; sliding, the dissipated power (name: variable)."""
-        mu, direction = self.attrs["friction"], self.attrs["sliding_direction"]
-        axes = ("x", "y")[: self.grid.dim]
-        components = (np.cos(direction), np.sin(direction))[: self.grid.dim]
-        tractions = [mu * c * state.pressure for c in components] if mu > 0 else []
-        variables = {}
-        for axis, traction in zip(axes, tractions):
-            name = f"tangential_traction_{axis}"
-            variables[name] = xr.Variable(self.dims, traction, attrs_for(name, length=length_unit,
-                                                                        pressure=pressure_unit))
-        if self.body.tensor is not None and mu > 0:
-            spectra = self.body.tensor.tangential_displacement(self.grid, fft.rfftn(state.pressure),
-                                                               [fft.rfftn(t) for t in tractions])
-            for axis, spectrum in zip(axes, spectra):
-                name = f"tangential_displacement_{axis}"
-                variables[name] = xr.Variable(self.dims, fft.irfftn(spectrum, self.grid.shape),
-                                              attrs_for(name, length=length_unit, pressure=pressure_unit))
-        # from the deformed surface: exactly zero on a decoupled elastic body, the dissipated power when sliding
-        mu_a = interlocking_friction(state.pressure, state.displacement, lengths=self.grid.lengths,
-                                     direction=direction, periodic=self.operator.periodic)
-        variables["friction_coefficient_interlocking"] = xr.Variable((), mu_a,
-                                                                     attrs_for("friction_coefficient_interlocking"))
-        variables["friction_coefficient"] = xr.Variable((), mu + mu_a, attrs_for("friction_coefficient"))
-        if "sliding_velocity" in self.attrs:  # elastic models dissipate nothing: their tensor is real
-            velocity = self.attrs["sliding_velocity"]
-            power = 0.0 if self.body.factor is None else traction_power(
-                self.grid, state.pressure, self.body.tensor, velocity, friction=mu, direction=direction)
-            variables["dissipated_power"] = xr.Variable((), power, attrs_for("dissipated_power", length=length_unit,
-                                                                             pressure=pressure_unit))
-        return variables
-
-    def check_window(self, pressure: np.ndarray) -> None:
-        """Refuse a non-periodic state that the window cuts: compression on its edge (the surface outside would carry
-        load too) or, adhesive, its cohesive zone reaching the edge (tension above :data:`EDGE_TENSION` of the law's
-        peak stress there; JKR, with no stress of its own, any tension: its contact edge is there)."""
-        if self.operator.periodic:
-            return
-        jkr = self.adhesion is not None and not self.adhesion.cohesive
-        if touches_edge(pressure) or (jkr and edge_tension(pressure, round_off_floor(pressure))):
-            raise ValueError(
-                "periodic=False: the contact reaches the edge of the window, so the surface outside it would "
-                "carry load too; enlarge the window (or use periodic=True for a periodic surface)"
-            )
-        if self.adhesion is not None and not jkr and edge_tension(pressure, EDGE_TENSION * self.adhesion.peak_stress):
-            raise ValueError(
-                "periodic=False: the adhesive zone reaches the edge of the window (tension above "
-                f"{EDGE_TENSION:g} of the law's peak stress there), so adhesion beyond it is cut off; enlarge the "
-                "window (or use periodic=True for a periodic surface)"
-            )
-
-    def check(self, state: ContactState, ds: xr.Dataset) -> None:
-        """Refuse a footprint cut by the window edge; raise :class:`ConvergenceError` if unconverged (first,
-        for an adhesive solve: a diverged cohesive iterate can touch the edge, which would hide why), and
-        :class:`contactlib.invariants.InvariantError` where a converged state breaks an invariant
-        (:func:`contactlib.invariants.verify_solve`; ``ds.attrs['invariants_checked']`` names them)."""
-        if state.converged or self.adhesion is None:
-            self.check_window(state.pressure)
-        if not state.converged:
-            tol, max_iter = ds.attrs["tol"], self.solver_args["max_iter"]
-            stalled = state.solver.startswith(("polonsky-keer", "coupled")) and state.iterations < max_iter
-            outer = f" ({state.outer_iterations} outer)" if state.outer_iterations else ""
-            message = (f"{state.solver} did not converge in {state.iterations} iterations{outer}: residual "
-                       f"{state.residual:.3e} > tol {tol:.1e}"
-                       + (" (stalled: no progress over the last iterations; round-off floor or an ill-posed scene)"
-                          if stalled else "")
-                       + (f"; {self.attrs['monotone_message']}" if self.attrs.get("monotone") == 0 else "")
-                       + ("; if this tension is beyond the pull-off, no equilibrium exists under load control "
-                          "(contactlib.adhesion_curve finds the pull-off; penetration control follows the branch "
-                          "past it)"
-                          if self.adhesion is not None and (self.solver_args["mean_pressure"] or 0.0) < 0 else ""))
-            ds.attrs["convergence_message"] = message  # the partial state says why it is partial
-            raise ConvergenceError(message, residual=state.residual, dataset=ds)
-        from .invariants import verify_solve  # imported here: invariants subclasses this module's ConvergenceError
-        verify_solve(self, state, ds)
-
-
-def constrained_solve(operator, heights, *, monitor=None, verify_below=None, restart_fraction=None,
-                      **args) -> ContactState:
-    """Frictionless contact on a symmetric compliance: Polonsky-Keer, or its dual under periodic displacement
-    control, where the primal iteration cannot be preconditioned (:mod:`contactlib.solvers.dual`), or, on a
-    plate-like body (not :attr:`~contactlib.operators.Compliance.preconditionable`), the semismooth Newton
-    method with a coarse space under either control (:mod:`contactlib.solvers.semismooth`).
-    ``args``: ``mean_pressure``, ``penetration`` (one of them None), ``tol``, ``max_iter``, ``initial_pressure``;
-    ``restart_fraction``: Polonsky-Keer's (default :data:`contactlib.solvers.ccg.RESTART_FRACTION`; the dual
-    restarts on every re-entry)."""
-    if not operator.preconditionable:
-        # a plate-like body (a thin remote-pressure layer): its soft long waves need a coarse space, under
-        # either control (the dual iteration stalled there beyond about 5 % contact at q0 h = 0.1)
-        return solve_semismooth(operator, heights, monitor=monitor, set_floor=PLATE_SET_FLOOR, **args)
-    if not operator.definite and args["penetration"] is not None:
-        args = {k: v for k, v in args.items() if k != "mean_pressure"}
-        return solve_periodic_displacement(operator, heights, monitor=monitor, verify_below=verify_below, **args)
-    if restart_fraction is not None:
-        args["restart_fraction"] = restart_fraction
-    return solve_polonsky_keer(operator, heights, monitor=monitor, **args)
-
-
-def _setup(heights, *, material, mean_pressure, penetration, periodic, tol, max_iter, kernel, method, length,
-           initial_pressure, target_error, layer, friction, sliding_direction, sliding_velocity,
-           adhesion=None) -> _Setup:
-    """Validate every argument of :func:`solve` and build the body's operators."""
-    values, grid, dims, coords = grid_of(heights, length)
-    E, nu = material.E0, material.nu
-    E_star = contact_modulus(E, nu)
-    if adhesion is None:
-        check_loads(mean_pressure, penetration)
-    else:
-        adhesive_contact.check(adhesion, values, spacing=grid.spacing, mean_pressure=mean_pressure,
-                               penetration=penetration, friction=friction, method=method, periodic=periodic)
-    if target_error is not None:
-        if tol is not None:
-            raise ValueError("give tol or target_error, not both")
-        tol = accuracy.tolerance_for(target_error)
-        if periodic:
-            accuracy.check_resolution(values, target_error, length=grid.lengths)
-    tol = (1e-8 if adhesion is None else adhesive_contact.DEFAULT_TOL) if tol is None else tol
-    check_tolerance(tol, "tol")
-    check_iterations(max_iter)
-    if kernel not in KERNELS:
-        raise ValueError(f"kernel must be one of {KERNELS}, got {kernel!r}")
-    if method not in METHODS:
-        raise ValueError(f"method must be one of {METHODS}, got {method!r}")
-    check_friction(layer, friction, sliding_direction, nu, method, kernel, periodic)
-    velocity, sliding_direction = check_velocity(sliding_velocity, sliding_direction, grid.dim, material, method,
-                                                  periodic)
-    if grid.dim == 1:
-        if abs(math.sin(sliding_direction)) > 1e-4:  # pi to four decimals (3.1416) passes
-            raise ValueError(f"sliding_direction must be 0 (+x) or pi (-x) for a profile (1D heights), got "
-                             f"{sliding_direction!r}")
-        sliding_direction = 0.0 if math.cos(sliding_direction) > 0 else math.pi  # 3.1416 from a command line: pi
-    if adhesion is not None and velocity is not None and any(v != 0 for v in velocity):
-        raise ValueError(f"sliding_velocity: adhesion is modelled at rest (a steady sliding adhesive contact is not "
-                         f"supported), got sliding_velocity={sliding_velocity!r} with adhesion")
-    warm = None
-    if initial_pressure is not None:
-        if method != "cg":
-            raise ValueError(f"initial_pressure: a warm start is for method='cg', got method={method!r}")
-        warm = real_values(initial_pressure, "initial_pressure")
-        if warm.shape != values.shape:
-            raise ValueError(f"initial_pressure has shape {warm.shape}, heights {values.shape}")
-        if not np.all(np.isfinite(warm)):
-            raise ValueError("initial_pressure contains NaN or infinite values")
-    body = body_model(grid, material=material, layer=layer, friction=float(friction),
-                      direction=float(sliding_direction), tol=tol, kernel=kernel, periodic=periodic, velocity=velocity)
-    if not body.compliance.definite and penetration is not None:
-        check_below_full_contact(penetration, values)
-    attrs = {"kernel": kernel, "periodic": int(periodic), "tol": tol, "max_iter": int(max_iter), "E": float(E),
-             "nu": float(nu), "E_star": E_star,
-             "load_control": "mean_pressure" if mean_pressure is not None else "penetration", **body.attrs}
-    if isinstance(material, Viscoelastic):
-        attrs["prony"] = [v for branch in material.prony for v in branch]  # E_1, tau_1, E_2, tau_2, ...
-    if velocity is not None:
-        attrs["sliding_velocity"] = list(velocity)
-    if target_error is not None:
-        attrs["target_error"] = float(target_error)
-    solver_args = {"mean_pressure": mean_pressure, "penetration": penetration, "tol": tol,
-                   "max_iter": int(max_iter), "initial_pressure": warm}
-    return _Setup(values, grid, dims, coords, body, solver_args, attrs, method, adhesion)

@@ -110,6 +110,24 @@ def time_values(values, name: str = "times") -> np.ndarray:
     return times
 
 
+def load_history(load, times: np.ndarray, name: str) -> np.ndarray:
+    """A load [its unit] as one value per time of ``times`` (as :func:`time_values` gives them): a constant, a
+    sequence of one value per time or a function of time; NaN, infinities and non-numbers refused naming ``name``
+    (the time-stepping drivers' ``mean_pressure`` and ``penetration`` histories)."""
+    if callable(load):
+        values = real_values([number(f"{name}(t = {float(t):g})", load(t), finite=False) for t in times], name)
+    else:
+        values = real_values(load, name)
+        if values.ndim == 0:
+            values = np.full(times.shape, float(values))
+        elif values.shape != times.shape:
+            raise ValueError(f"{name} has {values.size} values for {times.size} times: give one per time")
+    if not np.all(np.isfinite(values)):
+        k = int(np.argmax(~np.isfinite(values)))
+        raise ValueError(f"{name} history holds a non-finite value ({values[k]!r}) at times[{k}] = {times[k]!r}")
+    return values
+
+
 def grid_of(heights, length=None) -> tuple[np.ndarray, Grid, tuple[str, ...], dict]:
     """Heights array, grid, dim names and coords of a DataArray or ndarray input: the one way every entry point
     reads heights.
@@ -125,7 +143,7 @@ def grid_of(heights, length=None) -> tuple[np.ndarray, Grid, tuple[str, ...], di
     if isinstance(heights, xr.DataArray):
         values = real_values(heights.values, "heights")
         dims = tuple(heights.dims)
-        window = _window_of(heights) if all(d in heights.coords for d in dims) else None
+        window = window_of(heights) if all(d in heights.coords for d in dims) else None
         if length is None:
             if window is None:
                 missing = next(d for d in dims if d not in heights.coords)
@@ -160,7 +178,7 @@ def grid_of(heights, length=None) -> tuple[np.ndarray, Grid, tuple[str, ...], di
     return np.ascontiguousarray(values), grid, dims, coords
 
 
-def _window_of(heights: xr.DataArray) -> tuple[float, ...]:
+def window_of(heights: xr.DataArray) -> tuple[float, ...]:
     """The window lengths of a DataArray's coordinates (step times points), refused unless each coordinate is
     finite, increasing and evenly spaced (the FFT grid's)."""
     lengths = []

@@ -494,9 +494,9 @@ def with_dataset(err: ConvergenceError, message: str, dataset) -> ConvergenceErr
 
 
 def verify_solve(setup, state, ds) -> None:
-    """:func:`contactlib.solve`'s invariants of a converged ``state`` of ``setup`` (a ``contactlib.contact._Setup``),
-    labelled as ``ds`` (its ``attrs['tol']`` the tolerance reached): :func:`contact_checks` or, with adhesion,
-    :func:`adhesive_checks`; steady frictionless sliding adds the energy balance."""
+    """:func:`contactlib.solve`'s invariants of a converged ``state`` of ``setup`` (a :class:`contactlib.Problem` with
+    its load), labelled as ``ds`` (its ``attrs['tol']`` the tolerance reached): :func:`contact_checks` or, with
+    adhesion, :func:`adhesive_checks`; steady frictionless sliding adds the energy balance."""
     args, tol = setup.solver_args, float(ds.attrs["tol"])
     asked = {"mean_pressure": args["mean_pressure"], "penetration": args["penetration"]}
     if setup.adhesion is not None:

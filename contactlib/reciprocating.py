@@ -22,7 +22,7 @@ from .labels import attrs_for
 from .materials import Elastic, material_of
 from .resolution import guard_stepper
 from .solvers.state import dot
-from .transient import SLIDE_PER_STEP, TimeStepWarning, TransientInterrupted, _check_slide, _prepare, _Record
+from .transient import SLIDE_PER_STEP, StepRecord, TimeStepWarning, TransientInterrupted, check_slide, prepare_stepper
 
 log = logging.getLogger(__name__)
 
@@ -138,12 +138,12 @@ def solve_reciprocating(
     def path(t):
         return amplitude * math.sin(2 * math.pi * frequency * t) * unit[:dim]
 
-    stepper, _, _, positions, control = _prepare(
+    stepper, _, _, positions, control = prepare_stepper(
         heights, times=cycle_times, material=material, mean_pressure=mean_pressure, penetration=None, path=path,
         layer=layer, periodic=periodic, tol=tol, max_iter=max_iter, length=length)
     if stepper.grid.dim == 1 and abs(math.sin(direction)) > 1e-12:
         raise ValueError(f"direction must be 0 or pi for a profile (it slides along x), got {direction!r}")
-    slide = _check_slide(positions, stepper, f"steps_per_cycle {steps_per_cycle}: the surface", "the energy per cycle "
+    slide = check_slide(positions, stepper, f"steps_per_cycle {steps_per_cycle}: the surface", "the energy per cycle "
                          f"and the loop lose accuracy (the default, None, takes {fewest})")  # by default within it
     units = (length_unit, pressure_unit, time_unit)
     # below the steps' solve error a tangential force is noise (an elastic body's loop is 1e-18 of the load): the
@@ -157,7 +157,7 @@ def solve_reciprocating(
     status, record = None, None
     try:
         for cycle in range(max_cycles):
-            record = _Record(stepper, cycle_times[1:] + cycle / frequency, positions[1:],
+            record = StepRecord(stepper, cycle_times[1:] + cycle / frequency, positions[1:],
                              np.arange(steps_per_cycle) == steps_per_cycle - 1, True)
             before = last
             for k in range(1, steps_per_cycle + 1):

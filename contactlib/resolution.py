@@ -374,7 +374,7 @@ def guard_setup(setup, state, ds, *, where: str, guarantee: bool = False, quiet:
 
 
 def guard_stepper(ds, stepper, *, where: str, stacklevel: int = 5) -> Resolution | None:
-    """:func:`guard` for a time-stepping run (:class:`contactlib.transient._Stepper`), its contact that of the
+    """:func:`guard` for a time-stepping run (:class:`contactlib.transient.Stepper`), its contact that of the
     last step."""
     contact = None if stepper.pressure is None else np.asarray(stepper.pressure) > 0
     return guard(ds, stepper.values, stepper.grid.lengths, periodic=bool(stepper.periodic), contact=contact,

@@ -14,21 +14,21 @@ transition (zeta 3e-3..0.3) the pressure moves 30-40 % between neighbouring spee
 area falls from 9 % to 1.2 %), no prediction is within 25 % there, and each speed still takes 6-9 contact-set
 updates and 28-47 iterations: that is where the iterations of a sweep go. Every solve reaches the tolerance asked
 (a warm start changes the iterations, not the answer). Within :func:`solve_speeds` what does not depend on the
-speed is built once (:func:`.bodies.reusing_kernels`; ``mu_a`` comes from each speed's own displacement).
+speed is built once: the path is one prepared problem (:func:`contactlib.prepare`) moved from speed to speed by
+:meth:`contactlib.Problem.at_speed`, which keeps its caches (the half-space Green's tensor, and the carried Krylov
+vectors); ``mu_a`` comes from each speed's own displacement.
 """
 
 from __future__ import annotations
 
-import contextlib
 from collections.abc import Sequence
 
 import numpy as np
 import xarray as xr
 
-from .contact import solve
+from .problem import prepare
 from .resolution import recording, report, worst
-from .bodies import reusing_kernels
-from .solvers.recycle import recycling
+from .solvers.recycle import RecycledSpace
 from .solvers.state import dot
 
 
@@ -78,7 +78,7 @@ def predict_pressure(speeds: Sequence[float], pressures: Sequence[np.ndarray], s
     return predicted if np.all(np.isfinite(predicted)) else last.copy()  # a ratio's power can overflow far away
 
 
-def solve_speeds(heights, sliding_velocities, *, recycle: bool = False, **kwargs) -> list[xr.Dataset]:
+def solve_speeds(heights, sliding_velocities, *, recycle: bool | RecycledSpace = False, **kwargs) -> list[xr.Dataset]:
     """:func:`contactlib.solve` at each of ``sliding_velocities`` in the order given (walk them in increasing or
     decreasing speed), each from :func:`predict_pressure` of the answers before it.
 
@@ -92,10 +92,12 @@ def solve_speeds(heights, sliding_velocities, *, recycle: bool = False, **kwargs
         Carry the GMRES set solves' Krylov vectors from speed to speed (:mod:`contactlib.solvers.recycle`):
         the same answers, 8-10 % fewer GMRES iterations over a 30-speed sweep, but no less time at 512^2 (the
         correction's own cost eats the saving: 963 against 1050 iterations, 26.4x against 25.7x one elastic
-        solve), hence off by default.
+        solve), hence off by default. A :class:`contactlib.solvers.recycle.RecycledSpace` given here is the one
+        carried (its ``uses`` then count the set solves it corrected).
     **kwargs
         The other arguments of :func:`contactlib.solve` (``material``, ``mean_pressure``, ``tol``, ...), the
-        same at every speed; not ``initial_pressure`` (the path supplies it).
+        same at every speed; not ``initial_pressure`` (the path supplies it). The scene is prepared once
+        (:func:`contactlib.prepare`) and moved along the path (:meth:`contactlib.Problem.at_speed`).
 
     Returns
     -------
@@ -112,15 +114,21 @@ def solve_speeds(heights, sliding_velocities, *, recycle: bool = False, **kwargs
     sliding_velocities = list(sliding_velocities)
     if not sliding_velocities:
         raise ValueError("sliding_velocities is empty: give at least one velocity")
-    speeds, pressures, out = [], [], []
-    with recycling() if recycle else contextlib.nullcontext(), reusing_kernels(), \
-            recording() as seen:  # one resolution warning for the whole path, below
+    load = {k: kwargs.pop(k) for k in ("mean_pressure", "penetration") if k in kwargs}
+    speeds, pressures, out, problem = [], [], [], None
+    with recording() as seen:  # one resolution warning for the whole path, below
         for velocity in sliding_velocities:
             speed = float(np.linalg.norm(np.atleast_1d(np.asarray(velocity, dtype=float))))
             if not (np.isfinite(speed) and speed > 0):
                 raise ValueError(f"sliding_velocities: each velocity must be finite and nonzero, got {velocity!r}")
             start = predict_pressure(speeds, pressures, speed) if kwargs.get("method", "cg") == "cg" else None
-            ds = solve(heights, sliding_velocity=velocity, initial_pressure=start, **kwargs)
+            if problem is None:
+                problem = prepare(heights, sliding_velocity=velocity, **kwargs)
+                if recycle is not False:
+                    problem = problem.recycling(None if recycle is True else recycle)
+            else:
+                problem = problem.at_speed(velocity)
+            ds = problem.solve(**load, initial_pressure=start)
             speeds.append(speed)
             pressures.append(ds.pressure.values)
             out.append(ds)

@@ -1,7 +1,7 @@
 """Viscoelastic contact in time: :func:`solve_transient`, any load history and in-plane path (the stepper
 that :func:`contactlib.reciprocating.solve_reciprocating` drives cycle by cycle).
 
-Each step is one elastic contact solve (:func:`contactlib.contact.constrained_solve`, warm-started from
+Each step is one elastic contact solve (:func:`contactlib.solvers.symmetric_choice.constrained_solve`, warm-started from
 the previous step) with the step's effective modulus, on heights lowered by the displacement the body's
 memory alone would give (:mod:`contactlib.hereditary`: the rule, its order, its exact cases). The rigid
 surface moves along ``path`` by a phase factor on its spectrum, ``h(x - X(t))``: no re-gridding. Per step:
@@ -33,16 +33,17 @@ import xarray as xr
 from ._version import __version__
 from .analysis.friction import directional_slope
 from .bodies import Layer, body_model
-from .contact import ConvergenceError, constrained_solve
+from .contact import ConvergenceError
 from .hereditary import PronyHistory
 from .kernels.nyquist import even_on_nyquist
 from .invariants import check_relaxed_limit, contact_checks, relaxed_hold, step_invariants, verify, with_dataset
-from .inputs import check_friction, check_iterations, check_tolerance, check_whole, grid_of, number, periodic_of, \
-    real_values, time_values, touches_edge
+from .inputs import check_whole, load_history, real_values, time_values, touches_edge
 from .labels import attrs_for
 from .materials import Elastic, material_of
 from .solvers.state import height_scale
+from .solvers.symmetric_choice import constrained_solve
 from .resolution import guard_stepper
+from .scene import scene_of
 
 log = logging.getLogger(__name__)
 
@@ -149,17 +150,17 @@ def solve_transient(
     TransientInterrupted
         Ctrl-C: ``err.dataset`` holds the steps done.
     """
-    stepper, times, loads, positions, control = _prepare(
+    stepper, times, loads, positions, control = prepare_stepper(
         heights, times=times, material=material_of(material, E, nu), mean_pressure=mean_pressure,
         penetration=penetration, path=path, layer=layer, periodic=periodic, tol=tol, max_iter=max_iter, length=length)
     if initial not in INITIAL_STATES:
         raise ValueError(f"initial must be one of {INITIAL_STATES}, got {initial!r}")
-    _check_slide(positions, stepper, "path: the surface", "the dissipated power and friction lose accuracy (take "
+    check_slide(positions, stepper, "path: the surface", "the dissipated power and friction lose accuracy (take "
                  "more times)")
     if log_every is not None:
         check_whole(log_every, "log_every", 0)  # steps between log lines; 0: none
     saved = _saved_steps(save_fields, times)
-    record = _Record(stepper, times, positions, saved, path is not None)
+    record = StepRecord(stepper, times, positions, saved, path is not None)
     n = len(times)
     every = log_every if log_every is not None else (max(1, n // 10) if n >= 100 else 0)
     start = _time.perf_counter()
@@ -223,7 +224,7 @@ def _check_relaxed_limit(ds, stepper, times, loads, positions, control, last) ->
             ds.attrs["status"] = ds.attrs["convergence_message"]
 
 
-class _Stepper:
+class Stepper:
     """One scene stepped in time: the body's models per step size, its memory, the moving heights."""
 
     def __init__(self, values, grid, dims, material, layer, periodic, tol, max_iter, control):
@@ -333,13 +334,13 @@ class _Stepper:
                 **{f"tangential_force_{a}": f for a, f in zip(self.axes, forces)}}
 
 
-class _Record:
+class StepRecord:
     """The scalars of every step and the fields of the saved ones, labelled on demand."""
 
     SCALARS = ("mean_pressure", "penetration", "contact_area", "friction_coefficient_interlocking",
                "dissipated_power", "iterations", "residual")
 
-    def __init__(self, stepper: _Stepper, times, positions, saved, moving: bool):
+    def __init__(self, stepper: Stepper, times, positions, saved, moving: bool):
         self.stepper, self.times, self.positions, self.saved, self.moving = stepper, np.asarray(times), positions, \
             np.asarray(saved), moving
         self.columns = {name: [] for name in self.SCALARS + tuple(f"tangential_force_{a}" for a in stepper.axes)}
@@ -406,26 +407,27 @@ class _Record:
         return ds
 
 
-def _prepare(heights, *, times, material, mean_pressure, penetration, path, layer, periodic, tol, max_iter, length):
-    """Validate a run; returns ``(stepper, times, loads, positions, control)``."""
-    values, grid, dims, _ = grid_of(heights, length)
-    periodic = periodic_of(heights, periodic)
-    check_tolerance(tol, "tol")
-    check_iterations(max_iter)
-    check_friction(layer, 0.0, 0.0, material.nu, "cg", "spectral", periodic)
-    times = _times(times)
+def prepare_stepper(heights, *, times, material, mean_pressure, penetration, path, layer, periodic, tol, max_iter,
+                    length):
+    """Validate a run: the scene on the one path of every entry point (:func:`contactlib.scene.scene_of`: a
+    frictionless body at rest, its material's history stepped here), then the time path this driver adds (times,
+    loads, positions). Returns ``(stepper, times, loads, positions, control)``."""
+    scene = scene_of(heights, material=material, periodic=periodic, tol=tol, max_iter=max_iter, length=length,
+                     layer=layer)
+    values, grid, dims, periodic = scene.values, scene.grid, scene.dims, scene.periodic
+    times = time_values(times, "times")
     if (mean_pressure is None) == (penetration is None):
         raise ValueError("give exactly one of mean_pressure or penetration")
     control = "mean_pressure" if mean_pressure is not None else "penetration"
-    loads = _history(mean_pressure if mean_pressure is not None else penetration, times, control)
+    loads = load_history(mean_pressure if mean_pressure is not None else penetration, times, control)
     if control == "mean_pressure" and np.any(loads < 0):
         raise ValueError(f"mean_pressure must be >= 0 at every time, got {loads.min()!r}")
     positions = _positions(path, times, grid.dim)
-    stepper = _Stepper(values, grid, dims, material, layer, periodic, float(tol), int(max_iter), control)
+    stepper = Stepper(values, grid, dims, material, layer, periodic, float(tol), int(max_iter), control)
     return stepper, times, loads, positions, control
 
 
-def _check_slide(positions: np.ndarray, stepper: "_Stepper", what: str, consequence: str) -> float:
+def check_slide(positions: np.ndarray, stepper: Stepper, what: str, consequence: str) -> float:
     """The largest slide between consecutive positions ``(n, dim)`` [length] (as :func:`_positions` gives them),
     in grid spacings along each axis (0 without a step); beyond :data:`SLIDE_PER_STEP` on a body with memory,
     a :class:`TimeStepWarning` saying ``what`` slides and ``consequence`` (at the caller's caller)."""
@@ -435,27 +437,6 @@ def _check_slide(positions: np.ndarray, stepper: "_Stepper", what: str, conseque
         warnings.warn(f"{what} slides up to {slide:.3g} grid spacings a step, more than {SLIDE_PER_STEP:g}: "
                       f"{consequence}", TimeStepWarning, stacklevel=3)
     return slide
-
-
-def _times(times) -> np.ndarray:
-    """The instants as a finite, strictly increasing 1D array (:func:`contactlib.inputs.time_values`)."""
-    return time_values(times, "times")
-
-
-def _history(load, times: np.ndarray, name: str) -> np.ndarray:
-    """A load as one value per time: a constant, a sequence or a function of time; NaN and non-numbers refused."""
-    if callable(load):
-        values = real_values([number(f"{name}(t = {float(t):g})", load(t), finite=False) for t in times], name)
-    else:
-        values = real_values(load, name)
-        if values.ndim == 0:
-            values = np.full(times.shape, float(values))
-        elif values.shape != times.shape:
-            raise ValueError(f"{name} has {values.size} values for {times.size} times: give one per time")
-    if not np.all(np.isfinite(values)):
-        k = int(np.argmax(~np.isfinite(values)))
-        raise ValueError(f"{name} history holds a non-finite value ({values[k]!r}) at times[{k}] = {times[k]!r}")
-    return values
 
 
 def _positions(path, times: np.ndarray, dim: int) -> np.ndarray:
@@ -496,4 +477,5 @@ def _saved_steps(save_fields, times: np.ndarray) -> np.ndarray:
     return keep
 
 
-__all__ = ["solve_transient", "TransientInterrupted", "TimeStepWarning"]
+__all__ = ["solve_transient", "TransientInterrupted", "TimeStepWarning", "Stepper", "StepRecord", "prepare_stepper",
+           "check_slide"]

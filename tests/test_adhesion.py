@@ -9,10 +9,18 @@ import pytest
 import xarray as xr
 
 import contactlib
+from contactlib import prepare
 from contactlib import Adhesion
 from contactlib.adhesion import CohesiveZoneWarning
 from contactlib.reference import adhesive as ref
 from contactlib.reference import westergaard
+
+
+def loaded_problem(h, *, mean_pressure, penetration, initial_pressure=None, **scene):
+    """The prepared problem of ``scene`` with its load: what the solvers run on."""
+    return prepare(h, **scene).loaded(mean_pressure=mean_pressure, penetration=penetration,
+                                      initial_pressure=initial_pressure)
+
 
 # Johnson's wavy profile: wavelength 1, amplitude 0.01, E* = 1, alpha = 0.3
 AMPLITUDE, ALPHA = 0.01, 0.3
@@ -30,14 +38,10 @@ def test_energy_method_matches_johnson_and_westergaard():
     """The energy balance (eqs 9-11): mean pressure against contact half-width within 1 % of p*, and
     Westergaard's sin^2 without adhesion."""
     from contactlib.adhesive_contact import family
-    from contactlib.contact import _setup
-
     h = contactlib.surfaces.wavy(2048, amplitude=AMPLITUDE)
-    setup = _setup(h, material=contactlib.Elastic(1.0, 0.0), mean_pressure=None, penetration=0.0, periodic=True,
-                   tol=None, max_iter=10, kernel="spectral", method="cg", length=None, initial_pressure=None,
-                   target_error=None, layer=None,
-                   friction=0.0, sliding_direction=None, sliding_velocity=None,
-                   adhesion=Adhesion(work=WORK, model="jkr"))
+    setup = loaded_problem(h, material=contactlib.Elastic(1.0, 0.0), mean_pressure=None, penetration=0.0,
+                           periodic=True, tol=None, max_iter=10, kernel="spectral", layer=None, friction=0.0,
+                           sliding_direction=None, sliding_velocity=None, adhesion=Adhesion(work=WORK, model="jkr"))
     fam = family(setup)
     m = np.arange(fam.a.size - 1)
     a = (m + 1) * fam.spacing  # G between domains m and m + 1 acts at this half-width
@@ -75,14 +79,11 @@ def test_jkr_sphere_energy_method():
     pull-off -3/2 pi w R within 3 %, and load against contact radius within 3 % of it on the branch
     stable under load control (a > a_c) up to 1.3 a_c, penetration within 3 % of a_c^2 / R."""
     from contactlib.adhesive_contact import family
-    from contactlib.contact import _setup
-
     R, w = 1.0, 2.83e-4  # a_c = 0.1 = 26 elements
     h = contactlib.surfaces.paraboloid(128, length=0.5, radius=R)
-    setup = _setup(h, material=contactlib.Elastic(1.0, 0.0), mean_pressure=None, penetration=0.0, periodic=False,
-                   tol=None, max_iter=10, kernel="spectral", method="cg", length=None, initial_pressure=None,
-                   target_error=None, layer=None, friction=0.0, sliding_direction=None, sliding_velocity=None,
-                   adhesion=Adhesion(work=w, model="jkr"))
+    setup = loaded_problem(h, material=contactlib.Elastic(1.0, 0.0), mean_pressure=None, penetration=0.0,
+                           periodic=False, tol=None, max_iter=10, kernel="spectral", layer=None, friction=0.0,
+                           sliding_direction=None, sliding_velocity=None, adhesion=Adhesion(work=w, model="jkr"))
     fam = family(setup, max_radius=0.14)
     area, d, mean = fam.equilibrium_curve(w)
     load = mean * 0.5 * 0.5

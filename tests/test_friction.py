@@ -291,9 +291,9 @@ def test_unknown_base():
 
 
 def test_interlocking_slope_reuse_follows_the_heights():
-    """The slope reused along a speed sweep (inside ``reusing_slopes``) is the one of the heights given: an
-    in-place edit, another direction or window gets a fresh one (against the cylinder's mu_a = x_c / R,
-    exact for a parabola); outside the context nothing is kept."""
+    """The slope a :class:`SlopeCache` keeps is the one of the heights given: an in-place edit, another direction or
+    window gets a fresh one (against the cylinder's mu_a = x_c / R, exact for a parabola); without one nothing is
+    kept."""
     from contactlib.analysis import friction as fr
 
     n, R = 64, 10.0
@@ -302,13 +302,16 @@ def test_interlocking_slope_reuse_follows_the_heights():
     p = np.exp(-((x - 0.05) / 0.1) ** 2)
     centroid = float(np.sum(p * x) / np.sum(p))
     kw = dict(lengths=1.0, periodic=False)
-    with fr.reusing_slopes():
-        assert fr.interlocking_friction(p, h, **kw) == pytest.approx(centroid / R, rel=1e-12)
-        kept = fr._SLOPES.get()[0][2]
-        assert fr.interlocking_friction(p, h, **kw) == pytest.approx(centroid / R, rel=1e-12)
-        assert fr._SLOPES.get()[0][2] is kept  # reused, not recomputed
-        h *= 2.0  # in place: the radius halves
-        assert fr.interlocking_friction(p, h, **kw) == pytest.approx(2 * centroid / R, rel=1e-12)
-        assert fr.interlocking_friction(p, h, lengths=2.0, periodic=False) == pytest.approx(centroid / R, rel=1e-12)
-        assert fr.interlocking_friction(p, h, direction=np.pi, **kw) == pytest.approx(-2 * centroid / R, rel=1e-12)
-    assert fr._SLOPES.get() is None
+    slopes = fr.SlopeCache()
+    kw["slopes"] = slopes
+    assert fr.interlocking_friction(p, h, **kw) == pytest.approx(centroid / R, rel=1e-12)
+    kept = slopes.kept[2]
+    assert fr.interlocking_friction(p, h, **kw) == pytest.approx(centroid / R, rel=1e-12)
+    assert slopes.kept[2] is kept  # reused, not recomputed
+    h *= 2.0  # in place: the radius halves
+    assert fr.interlocking_friction(p, h, **kw) == pytest.approx(2 * centroid / R, rel=1e-12)
+    assert slopes.kept[2] is not kept
+    assert fr.interlocking_friction(p, h, lengths=2.0, periodic=False, slopes=slopes) == pytest.approx(
+        centroid / R, rel=1e-12)
+    assert fr.interlocking_friction(p, h, direction=np.pi, **kw) == pytest.approx(-2 * centroid / R, rel=1e-12)
+    assert fr.interlocking_friction(p, h, lengths=1.0, periodic=False) == pytest.approx(2 * centroid / R, rel=1e-12)

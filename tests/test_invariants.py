@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 import contactlib
-from contactlib import adhesive_contact, contact, invariants, surfaces, transient
+from contactlib import adhesive_contact, invariants, problem, surfaces, transient
 from contactlib.hereditary import PronyHistory
 from contactlib.invariants import InvariantError
 
@@ -28,14 +28,14 @@ def sls(E_inf=10.0, tau=1.0):
 
 def corrupting(monkeypatch, corrupt):
     """Make every contact solve of :func:`contactlib.solve` return ``corrupt(state)``, still claiming convergence."""
-    run = contact._Setup.run
+    run = contactlib.Problem.run
 
     def corrupted(self, *args, **kwargs):
         state = run(self, *args, **kwargs)
         assert state.converged
         return corrupt(state)
 
-    monkeypatch.setattr(contact._Setup, "run", corrupted)
+    monkeypatch.setattr(contactlib.Problem, "run", corrupted)
 
 
 def moved_pressure(state, source, target, amount):
@@ -167,10 +167,10 @@ def test_steady_sliding_energy_balance_is_checked(rough, monkeypatch):
     assert abs(ds.attrs["energy_balance_scaled"]) < 1e-12  # the same spectral sum: round-off
     power = float(ds.friction_coefficient_interlocking) * float(ds.mean_pressure) * 1.0
     assert abs(power / float(ds.dissipated_power) - 1) < 1e-12 and abs(ds.attrs["energy_balance"]) < 1e-12
-    traction_power = contact.traction_power
+    traction_power = problem.traction_power
     slope = invariants.rms_slope_along(rough.values, (1.0, 1.0), 0.0)
     off = 1e-6 * 0.02 * 1.0 * slope  # 100 tol of mean(p) |V| s_rms
-    monkeypatch.setattr(contact, "traction_power", lambda *a, **k: traction_power(*a, **k) + off)
+    monkeypatch.setattr(problem, "traction_power", lambda *a, **k: traction_power(*a, **k) + off)
     with pytest.raises(InvariantError) as err:
         contactlib.solve(rough, material=sls(tau=0.05), sliding_velocity=(1.0, 0.0), mean_pressure=0.02)
     assert_refused(err.value, "energy_balance")

@@ -12,7 +12,15 @@ import pytest
 from scipy.optimize import brentq
 
 import contactlib
+from contactlib import prepare
 from contactlib.reference import adhesive as ref
+
+
+def loaded_problem(h, *, mean_pressure, penetration, initial_pressure=None, **scene):
+    """The prepared problem of ``scene`` with its load: what the solvers run on."""
+    return prepare(h, **scene).loaded(mean_pressure=mean_pressure, penetration=penetration,
+                                      initial_pressure=initial_pressure)
+
 
 R, LENGTH, N = 1e-3, 4e-4, 128
 E, NU, WORK = 1e6, 0.5, 0.05
@@ -148,12 +156,10 @@ def test_pull_off_does_not_depend_on_the_sampling(sphere):
 
 
 def _scene(h, *, periodic, layer=None, length=None):
-    from contactlib.contact import _setup
-
-    return _setup(h, material=contactlib.Elastic(1.0, 0.3), mean_pressure=None, penetration=0.0, periodic=periodic,
-                  tol=None, max_iter=10, kernel="spectral", method="cg", length=length, initial_pressure=None,
-                  target_error=None, layer=layer, friction=0.0, sliding_direction=None, sliding_velocity=None,
-                  adhesion=contactlib.Adhesion(work=1e-4, model="jkr"))
+    return loaded_problem(h, material=contactlib.Elastic(1.0, 0.3), mean_pressure=None, penetration=0.0,
+                          periodic=periodic, tol=None, max_iter=10, kernel="spectral", length=length, layer=layer,
+                          friction=0.0, sliding_direction=None, sliding_velocity=None,
+                          adhesion=contactlib.Adhesion(work=1e-4, model="jkr"))
 
 
 @pytest.mark.parametrize("case", ["sphere", "rectangle", "profile"])

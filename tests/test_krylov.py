@@ -6,10 +6,16 @@ import numpy as np
 import pytest
 
 import contactlib
-from contactlib import Elastic, Layer, Viscoelastic
-from contactlib.contact import _setup
-from contactlib.solvers import krylov, solve_coupled
+from contactlib import Elastic, Layer, Viscoelastic, prepare
+from contactlib.solvers import krylov, nonsymmetric_choice, solve_coupled
 from contactlib.solvers.splitting import fourier_multiplier, solve_splitting
+
+
+def loaded_problem(h, *, mean_pressure, penetration, initial_pressure=None, **scene):
+    """The prepared problem of ``scene`` with its load: what the solvers run on."""
+    return prepare(h, **scene).loaded(mean_pressure=mean_pressure, penetration=penetration,
+                                      initial_pressure=initial_pressure)
+
 
 SLS_10 = Viscoelastic.standard_linear_solid(E0=1.0, E_inf=10.0, tau=1.0, nu=0.5)
 GLASSY_1000 = Viscoelastic.standard_linear_solid(E0=1.0, E_inf=1000.0, tau=1.0, nu=0.5)
@@ -21,10 +27,9 @@ def surface(n, dim, seed=3):
 
 
 def setup(h, material, mean_pressure, *, velocity=None, friction=0.0, layer=None, tol=1e-10, penetration=None):
-    return _setup(h, material=material, mean_pressure=mean_pressure, penetration=penetration, periodic=True, tol=tol,
-                  max_iter=10_000, kernel="spectral", method="cg", length=None, initial_pressure=None,
-                  target_error=None, layer=layer, friction=friction, sliding_direction=0.0 if friction else None,
-                  sliding_velocity=velocity)
+    return loaded_problem(h, material=material, mean_pressure=mean_pressure, penetration=penetration, periodic=True,
+                          tol=tol, max_iter=10_000, kernel="spectral", layer=layer, friction=friction,
+                          sliding_direction=0.0 if friction else None, sliding_velocity=velocity)
 
 
 def test_gmres_solves_a_dense_nonsymmetric_system():
@@ -93,11 +98,11 @@ def test_agrees_with_the_existing_solvers(case):
     layer = Layer(c["q0h"] * length / (2 * np.pi)) if "q0h" in c else None
     velocity = None if "zeta" not in c else (c["zeta"] * length / (2 * np.pi),) + (0.0,) * (c["dim"] - 1)
     s = setup(h, c["material"], c["P"], velocity=velocity, friction=c.get("friction", 0.0), layer=layer)
-    assert s.body.coupling is not None and s._krylov_applies()
-    state = s._krylov()
+    assert s.body.coupling is not None and nonsymmetric_choice.krylov_applies(s)
+    state = nonsymmetric_choice.solve_krylov(s)
     assert state.converged and state.residual <= 1e-10 and state.solver == "semismooth-gmres"
     assert state.mean_pressure == pytest.approx(c["P"], rel=1e-12)
-    for other in (solve_coupled(s._symmetric, s.body.coupling, s.values, **s.solver_args),
+    for other in (solve_coupled(s.solve_symmetric, s.body.coupling, s.values, **s.solver_args),
                   solve_splitting(fourier_multiplier(s.body.compliance, s.body.coupling), s.values, **s.solver_args)):
         assert other.converged
         assert np.linalg.norm(state.pressure - other.pressure) / np.linalg.norm(other.pressure) < 1e-6
@@ -128,7 +133,7 @@ def test_hard_cases_converge_here(scene):
         s = setup(h, GLASSY_1000, 0.5, velocity=(length / (2 * np.pi),), tol=1e-8)
     else:
         s = setup(h, SLS_10, 2.0, velocity=(length / (2 * np.pi),), tol=1e-8)
-    state = s._krylov()
+    state = nonsymmetric_choice.solve_krylov(s)
     assert state.converged and state.residual <= 1e-8
     if scene == "full contact":
         assert np.all(state.pressure > 0)
@@ -169,14 +174,13 @@ def test_loose_tolerance_ends_on_the_residual(tol, monkeypatch):
 def test_stall_stops_the_loop_and_solve_falls_back(monkeypatch):
     """Loss-dominated (E_inf/E0 = 1000 at V tau q0 = 1e-3, where the sets cycle): forced through the Newton loop it
     stops on the stall rule, not after every allowed set, and solve answers with Douglas-Rachford."""
-    from contactlib.contact import _Setup
 
     h = surface(1024, 1)
     length = float(h.x[1] - h.x[0]) * h.sizes["x"]
     s = setup(h, GLASSY_1000, 0.5, velocity=(1e-3 * length / (2 * np.pi),), tol=1e-8)
-    state = s._krylov()
+    state = nonsymmetric_choice.solve_krylov(s)
     assert not state.converged and state.outer_iterations < 100
-    monkeypatch.setattr(_Setup, "_krylov_applies", lambda self: True)
+    monkeypatch.setattr(nonsymmetric_choice, "krylov_applies", lambda problem: True)
     out = contactlib.solve(h, material=GLASSY_1000, mean_pressure=0.5, sliding_velocity=1e-3 * length / (2 * np.pi),
                            tol=1e-8)
     assert out.attrs["solver"] == "douglas-rachford" and out.attrs["converged"] == 1
@@ -186,9 +190,9 @@ def test_unconverged_is_reported_with_its_residual():
     """max_iter bounds the GMRES iterations over all sets: the state says it did not converge and how far it got
     (solve then tries the fallbacks, and raises ConvergenceError if they fail too: test_splitting)."""
     h = surface(64, 2)
-    s = _setup(h, material=Elastic(1.0, 0.3), mean_pressure=0.05, penetration=None, periodic=True, tol=1e-8,
-               max_iter=3, kernel="spectral", method="cg", length=None, initial_pressure=np.ones(h.shape),
-               target_error=None, layer=None, friction=0.8, sliding_direction=0.0, sliding_velocity=None)
-    state = s._krylov()
+    s = loaded_problem(h, material=Elastic(1.0, 0.3), mean_pressure=0.05, penetration=None, periodic=True, tol=1e-8,
+                       max_iter=3, kernel="spectral", method="cg", length=None, initial_pressure=np.ones(h.shape),
+                       target_error=None, layer=None, friction=0.8, sliding_direction=0.0, sliding_velocity=None)
+    state = nonsymmetric_choice.solve_krylov(s)
     assert not state.converged and state.residual > 1e-8 and np.isfinite(state.residual)
     assert state.iterations <= 3 + 2  # the last set's solve may finish its restart cycle's bookkeeping

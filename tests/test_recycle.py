@@ -6,7 +6,7 @@ import pytest
 
 import contactlib
 from contactlib.solvers import krylov
-from contactlib.solvers.recycle import RecycledSpace, current_space, recycling
+from contactlib.solvers.recycle import RecycledSpace
 
 SLS = contactlib.Viscoelastic.standard_linear_solid(E0=1.0, E_inf=10.0, tau=1.0, nu=0.5)
 
@@ -54,11 +54,16 @@ def test_kept_pairs_solve_their_span_in_one_step():
     assert space.pairs == []
 
 
-def test_recycling_block_scopes_the_space():
-    assert current_space() is None
-    with recycling() as space:
-        assert current_space() is space
-    assert current_space() is None
+def test_a_problem_holds_its_own_space():
+    """The carried vectors are a field of the prepared problem that asked for them: a problem made from it at another
+    speed shares them, a fresh one holds none (no state outlives its problem, none passes between problems)."""
+    h = contactlib.surfaces.self_affine(16, hurst=0.8, q_roll=2, q_cutoff=4, rms_slope=0.1, seed=3)
+    plain = contactlib.prepare(h, material=SLS, sliding_velocity=(1.0, 0.0))
+    assert plain.recycled is None and plain.at_speed((2.0, 0.0)).recycled is None
+    carrying = plain.recycling()
+    assert isinstance(carrying.recycled, RecycledSpace) and plain.recycled is None
+    assert carrying.at_speed((2.0, 0.0)).recycled is carrying.recycled
+    assert carrying.at_speed((2.0, 0.0)).kernels is carrying.kernels is plain.kernels
     with pytest.raises(ValueError, match="size"):
         RecycledSpace(size=0)
 
@@ -70,8 +75,8 @@ def test_recycled_speeds_equal_cold_solves():
     1e-5), and the path takes fewer GMRES iterations than without them."""
     h = contactlib.surfaces.self_affine(64, hurst=0.8, q_roll=2, q_cutoff=8, rms_slope=0.1, seed=3)
     velocities = [(zeta / (2 * np.pi), 0.0) for zeta in np.logspace(0, 2.5, 8)]
-    with recycling() as space:
-        path = contactlib.solve_speeds(h, velocities, material=SLS, mean_pressure=0.02, tol=1e-8, recycle=False)
+    space = RecycledSpace()
+    path = contactlib.solve_speeds(h, velocities, material=SLS, mean_pressure=0.02, tol=1e-8, recycle=space)
     assert space.uses > 5
     plain = contactlib.solve_speeds(h, velocities, material=SLS, mean_pressure=0.02, tol=1e-8, recycle=False)
     largest = max(abs(float(o.friction_coefficient_interlocking)) for o in path)

@@ -8,11 +8,19 @@ import pytest
 
 import contactlib
 from contactlib import Elastic, Viscoelastic
-from contactlib.contact import _setup
+from contactlib import prepare
+from contactlib.solvers import nonsymmetric_choice
 from contactlib.reference import viscoelastic_profile as vp
 from contactlib.solvers import solve_coupled
 from contactlib.solvers.splitting import fourier_multiplier, loss_dominated, solve_splitting
 from contactlib.solvers.state import contact_residual, height_scale
+
+
+def loaded_problem(h, *, mean_pressure, penetration, initial_pressure=None, **scene):
+    """The prepared problem of ``scene`` with its load: what the solvers run on."""
+    return prepare(h, **scene).loaded(mean_pressure=mean_pressure, penetration=penetration,
+                                      initial_pressure=initial_pressure)
+
 
 GLASSY_1000 = Viscoelastic.standard_linear_solid(E0=1.0, E_inf=1000.0, tau=1.0, nu=0.5)
 
@@ -27,10 +35,9 @@ def q0_of(h):
 
 
 def setup(h, material, mean_pressure, velocity=None, friction=0.0, kernel="spectral"):
-    return _setup(h, material=material, mean_pressure=mean_pressure, penetration=None, periodic=True, tol=1e-8,
-                  max_iter=10_000, kernel=kernel, method="cg", length=None, initial_pressure=None, target_error=None,
-                  layer=None, friction=friction, sliding_direction=0.0 if friction else None,
-                  sliding_velocity=velocity)
+    return loaded_problem(h, material=material, mean_pressure=mean_pressure, penetration=None, periodic=True, tol=1e-8,
+                          max_iter=10_000, kernel=kernel, layer=None, friction=friction,
+                          sliding_direction=0.0 if friction else None, sliding_velocity=velocity)
 
 
 @pytest.mark.parametrize("zeta, area", [(1e-4, (0.95, 1.0)), (1e-3, (0.1, 0.4)), (1e-2, (0.01, 0.08))])
@@ -78,9 +85,9 @@ def test_one_point_contact_on_a_thin_layer_falls_back_to_the_fixed_point():
     out = contactlib.solve(h, material=GLASSY_1000, mean_pressure=0.002, sliding_velocity=1e-3 / q0, layer=layer,
                            tol=1e-8)
     assert out.attrs["solver"].startswith("coupled") and out.attrs["converged"] == 1 and float(out.residual) <= 1e-8
-    s = _setup(h, material=GLASSY_1000, mean_pressure=0.002, penetration=None, periodic=True, tol=1e-8,
-               max_iter=10_000, kernel="spectral", method="cg", length=None, initial_pressure=None, target_error=None,
-               layer=layer, friction=0.0, sliding_direction=None, sliding_velocity=1e-3 / q0)
+    s = loaded_problem(h, material=GLASSY_1000, mean_pressure=0.002, penetration=None, periodic=True, tol=1e-8,
+                       max_iter=10_000, kernel="spectral", layer=layer, friction=0.0, sliding_direction=None,
+                       sliding_velocity=1e-3 / q0)
     alone = solve_splitting(fourier_multiplier(s.body.compliance, s.body.coupling), s.values, mean_pressure=0.002,
                             tol=1e-10, max_iter=30_000)
     assert alone.converged and alone.iterations > 10_000
@@ -152,7 +159,7 @@ def test_agrees_with_the_coupled_solver_where_it_converges(case):
         h = profile() if case == "friction-1d" else profile(64, dim=2, cutoff=8)
         s = setup(h, Elastic(1.0, 0.3), 0.05, friction=0.5)
     args = dict(s.solver_args, tol=1e-10)
-    reference = solve_coupled(s._symmetric, s.body.coupling, s.values, **args)
+    reference = solve_coupled(s.solve_symmetric, s.body.coupling, s.values, **args)
     state = solve_splitting(fourier_multiplier(s.body.compliance, s.body.coupling), s.values, **args)
     assert reference.converged and state.converged and state.residual <= 1e-10
     assert np.linalg.norm(state.pressure - reference.pressure) / np.linalg.norm(reference.pressure) < 1e-6
@@ -191,11 +198,10 @@ def test_dispatch_rule():
 def test_stalled_coupled_solve_falls_back(monkeypatch):
     """With the direct dispatch switched off (and the semismooth-GMRES loop and finish, tested elsewhere), the coupled
     solver stalls on a loss-dominated scene and solve falls back to the splitting, which converges."""
-    from contactlib.contact import _Setup
     from contactlib.solvers import splitting
 
     monkeypatch.setattr(splitting, "SPLIT_ABOVE", np.inf)
-    monkeypatch.setattr(_Setup, "_krylov_applies", lambda self: False)
+    monkeypatch.setattr(nonsymmetric_choice, "krylov_applies", lambda problem: False)
     monkeypatch.setattr(splitting, "FINISH_FIRST", 10**9)  # and its finish
     h = profile()
     out = contactlib.solve(h, material=GLASSY_1000, mean_pressure=0.5, sliding_velocity=1e-2 / q0_of(h), tol=1e-8)
@@ -227,7 +233,7 @@ def test_diverging_first_try_is_bounded_and_falls_back():
     h = profile(64, dim=2, cutoff=8)
     V = (1e-3 / q0_of(h), 0.0)
     s = setup(h, GLASSY_1000, 0.05, V)
-    attempt = s._krylov(first_try=True)
+    attempt = nonsymmetric_choice.solve_krylov(s, first_try=True)
     assert not attempt.converged and attempt.residual > 1e-2
     assert attempt.iterations <= krylov.TRY_ITERATIONS + 1  # of max_iter = 10_000
     out = contactlib.solve(h, material=GLASSY_1000, mean_pressure=0.05, sliding_velocity=V, tol=1e-8)
@@ -301,7 +307,7 @@ def test_off_axis_sliding_near_full_contact_converges():
     assert out.attrs["converged"] == 1 and float(out.residual) <= 1e-8
     assert out.attrs["solver"] == "douglas-rachford"
     s = setup(h, GLASSY_1000, 0.5, V)
-    loose = solve_coupled(s._symmetric, s.body.coupling, s.values, **dict(s.solver_args, tol=1e-7))
+    loose = solve_coupled(s.solve_symmetric, s.body.coupling, s.values, **dict(s.solver_args, tol=1e-7))
     assert loose.residual < 1e-6 and 0.99 < float(out.contact_area) < 1.0
     p = out.pressure.values
     assert np.linalg.norm(p - loose.pressure) / np.linalg.norm(p) < 1e-4

@@ -498,7 +498,8 @@ def test_separable_spreading_matches_the_sparse_matrix():
     gathering matrix (and its transpose) built independently from the same Gaussians, on a mesh where the
     supports wrap around the periodic window: the mesh fields and the gathered values agree to 1e-13. Also
     on a mesh narrower than the support (the kernels that wrap every column)."""
-    from contactlib.two_scale.interaction import _gather, _gaussian_factors, _gaussian_gather, _spread
+    from contactlib.two_scale.interaction import _gaussian_gather, gather_from_mesh as _gather, \
+        gaussian_factors as _gaussian_factors, spread_on_mesh as _spread
 
     rng = np.random.default_rng(7)
     centers = rng.uniform(0.0, 1.0, (300, 2))

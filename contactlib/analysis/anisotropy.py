@@ -11,7 +11,7 @@ import numpy as np
 import xarray as xr
 
 from ..inputs import check_whole
-from .statistics import _half_spectrum_weights, _values_and_grid
+from .statistics import half_spectrum_weights, values_and_grid
 
 
 def anisotropy_tensor(field, zeta1: float, zeta2: float, *, length=None, n_theta: int = 181) -> xr.Dataset:
@@ -27,7 +27,7 @@ def anisotropy_tensor(field, zeta1: float, zeta2: float, *, length=None, n_theta
     -------
     Dataset with ``M`` (dims ``i``, ``j``), ``mu2`` (dim ``theta``), ``gamma``, ``theta_d`` [rad, in [0, pi)].
     """
-    values, grid = _values_and_grid(field, length)
+    values, grid = values_and_grid(field, length)
     if grid.dim != 2:
         raise ValueError("anisotropy_tensor needs a 2D field")
     if not (np.isfinite(zeta2) and 0 <= zeta1 < zeta2):
@@ -41,7 +41,7 @@ def anisotropy_tensor(field, zeta1: float, zeta2: float, *, length=None, n_theta
         raise ValueError(f"zeta1, zeta2: the band ({zeta1}, {zeta2}) q0 holds no wavevector of the grid (its modes "
                          f"lie on multiples of q0 up to {float(q.max() / q0):.4g} q0)")
     power = np.abs(np.fft.rfftn(values)) ** 2 * band
-    power *= _half_spectrum_weights(grid) / grid.size**2
+    power *= half_spectrum_weights(grid) / grid.size**2
     qx_b = np.broadcast_to(qx, q.shape)
     qy_b = np.broadcast_to(qy, q.shape)
     m = np.array([[np.sum(power * qx_b * qx_b), np.sum(power * qx_b * qy_b)],

@@ -2,9 +2,6 @@
 
 from __future__ import annotations
 
-import contextlib
-import contextvars
-
 import numpy as np
 
 from ..inputs import real_values
@@ -35,7 +32,8 @@ def directional_slope(field: np.ndarray, *, lengths, direction: float = 0.0, per
     return grads[0] * np.cos(direction) + grads[1] * np.sin(direction)
 
 
-def interlocking_friction(pressure, surface, *, lengths, direction: float = 0.0, periodic: bool = True) -> float:
+def interlocking_friction(pressure, surface, *, lengths, direction: float = 0.0, periodic: bool = True,
+                          slopes: SlopeCache | None = None) -> float:
     """Interlocking friction coefficient ``mu_a`` [1] of a rigid surface sliding along ``direction``.
 
     ``mu_a = -(1 / (A p_m)) * integral of p du_z/ds`` over the contact (seed 2, section 4.3), with
@@ -56,44 +54,39 @@ def interlocking_friction(pressure, surface, *, lengths, direction: float = 0.0,
     (:func:`contactlib.analysis.traction_power`, equal to round-off). From the rigid heights the derivative misses
     that identity by its discretisation error (1e-5 to 1e-4 on a rough elastic contact, 4-15 % of a viscoelastic
     slide's dissipated power at 4 points per shortest wavelength); where the contact is resolved both agree.
+    ``slopes``: a :class:`SlopeCache` that keeps the surface's slope for the next call with the same surface.
     """
     p = real_values(pressure, "pressure")
     total = float(p.sum())
     if total <= 0:
         return 0.0
-    slope = _cached_slope(surface, lengths, direction, periodic)
+    if slopes is None:
+        slope = directional_slope(surface, lengths=lengths, direction=direction, periodic=periodic)
+    else:
+        slope = slopes.slope(surface, lengths=lengths, direction=direction, periodic=periodic)
     return -float(np.sum(p * slope)) / total
 
 
-_SLOPES: contextvars.ContextVar = contextvars.ContextVar("slopes", default=None)
+class SlopeCache:
+    """The last surface's :func:`directional_slope`, kept for the next :func:`interlocking_friction` with the same
+    surface (a study that labels many pressures with one rigid surface): pass one as ``slopes=``. The hit is checked
+    on the values, not the object, so a caller that edits its array in place gets a fresh slope; the slope is
+    read-only while kept, and lives as long as its holder."""
 
+    def __init__(self):
+        self.kept: tuple | None = None  # (heights copy, key, slope)
 
-@contextlib.contextmanager
-def reusing_slopes():
-    """Within this context (this thread's), :func:`interlocking_friction` keeps the last surface's slope and
-    reuses it while the same surface comes again (a study that labels many pressures with one rigid surface).
-    Scoped so that no grid-sized copy outlives it."""
-    token = _SLOPES.set([])
-    try:
-        yield
-    finally:
-        _SLOPES.reset(token)
-
-
-def _cached_slope(heights, lengths, direction, periodic) -> np.ndarray:
-    """:func:`directional_slope` of ``heights`` (a surface), from the :func:`reusing_slopes` store when one is open
-    and holds the same values. The hit is checked on the values, not the object, so a caller that edits its
-    array in place gets a fresh slope."""
-    store = _SLOPES.get()
-    if store is None:
-        return directional_slope(heights, lengths=lengths, direction=direction, periodic=periodic)
-    heights = real_values(heights, "heights")
-    key = (tuple(np.broadcast_to(np.asarray(lengths, dtype=float), (heights.ndim,))), float(direction), bool(periodic))
-    if store:
-        stored, stored_key, slope = store[0]
-        if stored_key == key and stored.shape == heights.shape and np.array_equal(stored, heights):
-            return slope
-    slope = directional_slope(heights, lengths=lengths, direction=direction, periodic=periodic)
-    slope.flags.writeable = False
-    store[:] = [(heights.copy(), key, slope)]
-    return slope
+    def slope(self, heights, *, lengths, direction: float, periodic: bool) -> np.ndarray:
+        """:func:`directional_slope` of ``heights``, the kept one where the values, window, direction and periodicity
+        are the same."""
+        heights = real_values(heights, "heights")
+        key = (tuple(np.broadcast_to(np.asarray(lengths, dtype=float), (heights.ndim,))), float(direction),
+               bool(periodic))
+        if self.kept is not None:
+            stored, stored_key, slope = self.kept
+            if stored_key == key and stored.shape == heights.shape and np.array_equal(stored, heights):
+                return slope
+        slope = directional_slope(heights, lengths=lengths, direction=direction, periodic=periodic)
+        slope.flags.writeable = False
+        self.kept = (heights.copy(), key, slope)
+        return slope

@@ -10,17 +10,17 @@ import numpy as np
 import xarray as xr
 
 from ..grid import Grid
-from ..inputs import _window_of, check_whole, real_values
+from ..inputs import window_of, check_whole, real_values
 from ..labels import attrs_for
 
 
-def _values_and_grid(field, length=None) -> tuple[np.ndarray, Grid]:
+def values_and_grid(field, length=None) -> tuple[np.ndarray, Grid]:
     """The field's values and grid, refused unless 1D or 2D, at least 2 points a side, finite, on a window of
     finite positive lengths."""
     if isinstance(field, xr.DataArray):
         values = real_values(field.values, "field")
         if length is None and values.ndim in (1, 2) and min(values.shape, default=0) >= 2:
-            length = _window_of(field)  # evenly spaced coordinates, as solve reads them
+            length = window_of(field)  # evenly spaced coordinates, as solve reads them
     else:
         values = real_values(field, "field")
         if length is None:  # no default window: a 1 m one gave micrometre surfaces a slope a million times too small
@@ -42,7 +42,7 @@ def check_field(values: np.ndarray, name: str) -> None:
         raise ValueError(f"{name} contains NaN or infinite values")
 
 
-def _half_spectrum_weights(grid: Grid) -> np.ndarray:
+def half_spectrum_weights(grid: Grid) -> np.ndarray:
     """Weights of an rfft half-spectrum in a sum over the full spectrum (2, but 1 for the columns
     without a mirror image)."""
     weight = np.full(grid.spectral_shape(), 2.0)
@@ -61,7 +61,7 @@ def rms_height(field) -> float:
 def rms_slope(field, *, length=None) -> float:
     """Root mean square gradient ``sqrt(<|grad h|^2>)``, computed spectrally (exact for a
     periodic band-limited field; the Nyquist mode is dropped as its derivative is undefined)."""
-    values, grid = _values_and_grid(field, length)
+    values, grid = values_and_grid(field, length)
     spec = np.fft.rfftn(values)
     q2 = grid.wavenumber() ** 2
     for axis, n in enumerate(grid.shape):
@@ -83,7 +83,7 @@ def psd(field, *, length=None, bins: int | None = None) -> xr.DataArray:
     """
     if bins is not None:
         check_whole(bins, "bins")
-    values, grid = _values_and_grid(field, length)
+    values, grid = values_and_grid(field, length)
     spec = np.abs(np.fft.rfftn(values - values.mean())) ** 2
     c = spec * grid.element_area**2 / ((2 * np.pi) ** grid.dim * float(np.prod(grid.lengths)))
     q = grid.wavenumber()
@@ -108,7 +108,7 @@ def fit_hurst(field, *, q_min: float, q_max: float, length=None) -> float:
     (multiples of ``q0``): slope ``-(dim + 2H)``."""
     if not (np.isfinite(q_min) and np.isfinite(q_max) and 0 < q_min < q_max):
         raise ValueError(f"need 0 < q_min < q_max (multiples of q0), got q_min={q_min!r}, q_max={q_max!r}")
-    values, grid = _values_and_grid(field, length)
+    values, grid = values_and_grid(field, length)
     c = psd(values, length=grid.lengths)
     q0 = 2 * np.pi / grid.lengths[0]
     sel = (c.wavenumber >= q_min * q0) & (c.wavenumber <= q_max * q0) & (c > 0)

@@ -25,7 +25,7 @@ import scipy.fft
 from ..grid import Grid
 from ..kernels.nyquist import even_on_nyquist, nyquist_planes, wavevector_along
 from ..kernels.tensor import surface_green_tensor
-from .statistics import _half_spectrum_weights, _values_and_grid
+from .statistics import half_spectrum_weights, values_and_grid
 
 
 def _along(grid: Grid, velocity) -> np.ndarray:
@@ -54,7 +54,7 @@ def dissipated_power(displacement, *, material, sliding_velocity, length=None, l
     """
     if not (hasattr(material, "complex_modulus") and hasattr(material, "nu")):
         raise ValueError(f"material must be a contactlib.Viscoelastic or contactlib.Elastic, got {material!r}")
-    values, grid = _values_and_grid(displacement, length)
+    values, grid = values_and_grid(displacement, length)
     velocity = np.asarray(sliding_velocity, dtype=float).ravel()
     if velocity.shape != (grid.dim,) or not np.all(np.isfinite(velocity)):
         raise ValueError(f"sliding_velocity must be {grid.dim} finite component(s), got {sliding_velocity!r}")
@@ -63,7 +63,7 @@ def dissipated_power(displacement, *, material, sliding_velocity, length=None, l
     nonzero = grid.wavenumber() > 0
     loss = np.zeros(grid.spectral_shape())
     loss[nonzero] = _body_modulus(grid, material, velocity)[nonzero].imag / unit.normal[nonzero]
-    power = np.abs(np.fft.rfftn(values)) ** 2 * _half_spectrum_weights(grid)
+    power = np.abs(np.fft.rfftn(values)) ** 2 * half_spectrum_weights(grid)
     return float(np.sum(power * along * loss) / grid.size**2)
 
 
@@ -100,5 +100,5 @@ def traction_power(grid: Grid, pressure: np.ndarray, tensor, sliding_velocity, *
             qx, qy = grid.wavevectors()
             along = (qx * np.cos(direction) + qy * np.sin(direction)) / safe
             form = form + friction**2 * (tensor.inplane * along**2 + tensor.antiplane * (1 - along**2))
-    power = np.abs(spectrum) ** 2 * _half_spectrum_weights(grid)
+    power = np.abs(spectrum) ** 2 * half_spectrum_weights(grid)
     return float(np.sum(power * _along(grid, sliding_velocity) * np.imag(form)) / grid.size**2)

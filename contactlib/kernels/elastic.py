@@ -89,7 +89,7 @@ def _love_image_sum(q, d, E_star: float, orders: np.ndarray, factor) -> np.ndarr
     return out
 
 
-def _offsets(grid: Grid) -> tuple[np.ndarray, ...]:
+def padded_offsets(grid: Grid) -> tuple[np.ndarray, ...]:
     """Signed node offsets on the padded (2n) circular layout, per axis [length]."""
     out = []
     for n, d in zip(grid.shape, grid.spacing):
@@ -121,7 +121,7 @@ def halfspace_love_influence(grid: Grid, E_star: float) -> np.ndarray:
     of a half-plane is defined up to a constant, fixed here so that a line load gives zero
     displacement at distance ``L`` (the window length): ``u = -(2/(pi E*)) ln(r/L)`` per unit load.
     """
-    off = _offsets(grid)
+    off = padded_offsets(grid)
     if grid.dim == 2:
         x, y = off
         a, b = grid.spacing[0] / 2, grid.spacing[1] / 2
@@ -142,7 +142,7 @@ def halfspace_point_influence(grid: Grid, E_star: float) -> np.ndarray:
     term is taken from the uniform element (Love), as for any collocation scheme.
     """
     love = halfspace_love_influence(grid, E_star)
-    off = _offsets(grid)
+    off = padded_offsets(grid)
     with np.errstate(divide="ignore"):
         if grid.dim == 2:
             r = np.sqrt(off[0] ** 2 + off[1] ** 2)

@@ -26,7 +26,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..grid import Grid
-from .elastic import _offsets
+from .elastic import padded_offsets
 from .layer import halfspace_factors, layer_factors, zero_mode_compliance
 from .nyquist import even_on_nyquist, unit_projections
 
@@ -156,7 +156,7 @@ def halfspace_coupling_influence(grid: Grid, E: float, nu: float, direction: flo
     nodes). 2D: Cerruti's ``(1 - 2 nu)(1 + nu) / (2 pi E) dA (x . s) / r^2`` for the element's load at
     its node (Johnson eq. 3.86); both odd, so an element's own term is zero.
     """
-    off = _offsets(grid)
+    off = padded_offsets(grid)
     k0 = (1 - 2 * nu) * (1 + nu) / (2 * E)
     if grid.dim == 1:
         return k0 * grid.spacing[0] * np.sign(off[0]) * np.cos(direction)

@@ -128,14 +128,14 @@ def solve_polonsky_keer(
 
     if load_control:
         if mean_pressure == 0:
-            return _zero_state(heights, penetration=0.0)
+            return zero_state(heights, penetration=0.0)
         start = float(mean_pressure) if initial_pressure is None else fz.as2d(np.maximum(initial_pressure, 0.0))
         if np.sum(start) <= 0:
             start = float(mean_pressure)  # a uniform start: no grid-sized temporary
     else:
         interference = np.maximum(hp + penetration, 0.0)
         if not interference.any():
-            return _zero_state(heights, penetration=float(penetration))
+            return zero_state(heights, penetration=float(penetration))
         start = interference / self_compliance if initial_pressure is None else \
             fz.as2d(np.maximum(initial_pressure, 0.0))
     shape = heights.shape
@@ -237,7 +237,7 @@ def _state(p, gap, hp, shape, approach, it, residual, tol, out=None) -> ContactS
     )
 
 
-def _zero_state(heights: np.ndarray, *, penetration: float) -> ContactState:
+def zero_state(heights: np.ndarray, *, penetration: float) -> ContactState:
     p = np.zeros_like(heights)
     g = heights.max() - heights - penetration
     pen = float(np.mean(np.maximum(-g, 0.0)) / height_scale(heights))

@@ -260,10 +260,12 @@ class PlateCompliance(ComplexCompliance):
         the set updates diverged on a 2^14-point plate (residual 0.06, 0.8, 17, 306, ...): one GMRES step cuts
         the residual by solving the soft waves, which dominate it, and leaves the short waves of the pressure,
         whose signs pick the next set, unsolved.
+    space : contactlib.solvers.recycle.RecycledSpace, optional
+        As :class:`.krylov.ComplexCompliance`.
     """
 
-    def __init__(self, multiplier: np.ndarray, grid, modes: np.ndarray, relative: float = 0.0):
-        super().__init__(multiplier, grid, relative=relative)
+    def __init__(self, multiplier: np.ndarray, grid, modes: np.ndarray, relative: float = 0.0, space=None):
+        super().__init__(multiplier, grid, relative=relative, space=space)
         self.multiplier, self.modes = multiplier, modes
         self._built = None  # the last set's preconditioner: a held set is solved again, tighter
 

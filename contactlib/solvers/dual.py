@@ -26,7 +26,7 @@ from collections.abc import Callable
 import numpy as np
 
 from ..operators import Compliance, Stiffness
-from .ccg import _zero_state, solve_polonsky_keer
+from .ccg import zero_state, solve_polonsky_keer
 from .state import ContactState, contact_residual, height_scale
 
 
@@ -52,7 +52,7 @@ def solve_periodic_displacement(
         raise ValueError("solve_periodic_displacement: the operator must be periodic")
     hp = heights - heights.max()
     if not np.any(hp + penetration > 0):
-        return _zero_state(heights, penetration=float(penetration))
+        return zero_state(heights, penetration=float(penetration))
     mean_gap = float(-np.mean(hp) - penetration)
     if mean_gap <= 0:
         raise ValueError(f"penetration {penetration!r} reaches full contact (mean gap {mean_gap:.3e} <= 0): a "

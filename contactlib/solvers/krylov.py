@@ -25,7 +25,7 @@ import numpy as np
 
 from .. import fft
 from . import _krylov_sweeps as sweeps
-from .recycle import current_space
+from .recycle import RecycledSpace
 from .state import dot
 
 RESTART = 30
@@ -108,9 +108,12 @@ class ComplexCompliance:
     cap : int, optional
         GMRES iterations allowed on one set, whatever the Newton loop's budget (a first try:
         :data:`TRY_SET_ITERATIONS`); the set solve then returns its iterate, unconverged.
+    space : contactlib.solvers.recycle.RecycledSpace, optional
+        Krylov vectors carried from set solve to set solve, across the solves of a path of speeds.
     """
 
-    def __init__(self, multiplier: np.ndarray, grid, relative: float = FORCING, cap: int | None = None):
+    def __init__(self, multiplier: np.ndarray, grid, relative: float = FORCING, cap: int | None = None,
+                 space: RecycledSpace | None = None):
         self.grid, self.relative, self.cap = grid, relative, cap
         self.shape = tuple(grid.shape)
         count = float(np.prod(self.shape))
@@ -122,7 +125,7 @@ class ComplexCompliance:
         self._plan = fft.get_fft(self.shape, slot="krylov")
         self._last = np.zeros(int(count), dtype=bool)  # the last call's contact set
         self._workspace = np.empty(0)  # GMRES's basis and directions, grown to the largest set so far
-        self.space = current_space()  # Krylov vectors carried across solves (:func:`.recycle.recycling`), or None
+        self.space = space  # Krylov vectors carried across solves (:mod:`.recycle`), or None
 
     def _convolve(self, multiplier: np.ndarray, index: np.ndarray | None, values: np.ndarray) -> np.ndarray:
         """``M values`` of a field that is ``values`` on ``index`` (None: everywhere) and 0 elsewhere."""

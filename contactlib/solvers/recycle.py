@@ -20,14 +20,12 @@ Measured over 30 speeds zeta = V tau q0 1e-3..1e3 (E_inf/E0 = 10, 10 % contact, 
 transition, where the set moves at every update. The time is not lower at 512^2 (CPU 10.2 s both ways in one
 run, load 4.5): building ``Z`` (``SIZE^2 / 2`` inner products on the set at each solve) and applying ``Q``
 (``2 SIZE`` per iteration) cost what the saved iterations did, so :func:`contactlib.solve_speeds` carries the
-vectors only on request. Where the set moves by more than :data:`MOVED` of its points the pairs mislead (503
-iterations on one speed of the transition when kept): they are dropped there.
+vectors only on request (a :class:`RecycledSpace` held by the path's prepared problem, passed to each
+:class:`.krylov.ComplexCompliance` it builds). Where the set moves by more than :data:`MOVED` of its points the
+pairs mislead (503 iterations on one speed of the transition when kept): they are dropped there.
 """
 
 from __future__ import annotations
-
-import contextlib
-import contextvars
 
 import numpy as np
 
@@ -41,27 +39,6 @@ the same CPU time within the noise."""
 MOVED = 0.01
 """A set that differs from the kept pairs' set by more than this fraction of its points drops them (256^2 sweep
 from the last answer: 0.002 gave 815 iterations, 0.01 801, 0.05 831; keeping them at any move, 1449)."""
-
-_SPACE: contextvars.ContextVar = contextvars.ContextVar("krylov_space", default=None)
-
-
-def current_space() -> RecycledSpace | None:
-    """The space of the innermost :func:`recycling` block, None outside one."""
-    return _SPACE.get()
-
-
-@contextlib.contextmanager
-def recycling(space: RecycledSpace | None = None):
-    """Within the block, every GMRES set solve (:class:`.krylov.ComplexCompliance` built there) reads and feeds
-    ``space`` (a new :class:`RecycledSpace` by default), across :func:`contactlib.solve` calls: a path of
-    speeds (:func:`contactlib.solve_speeds`). Yields the space."""
-    space = RecycledSpace() if space is None else space
-    token = _SPACE.set(space)
-    try:
-        yield space
-    finally:
-        _SPACE.reset(token)
-
 
 class RecycledSpace:
     """The kept pairs ``(x, z)`` (on the contact set :attr:`index`, the latest last) and the map ``Q`` they give.

@@ -38,7 +38,7 @@ from collections.abc import Callable
 
 import numpy as np
 
-from .ccg import _zero_state
+from .ccg import zero_state
 from .coarse import soft_modes, two_level
 from .state import ContactState, dot, height_scale, residual_from_sums
 from ._krylov_sweeps import newton_sweep
@@ -108,7 +108,7 @@ def solve_semismooth(
     hp = (heights - heights.max()).reshape(-1)
     scale = height_scale(heights)
     if not load_control and not np.any(hp + penetration > 0):
-        return _zero_state(heights, penetration=float(penetration))
+        return zero_state(heights, penetration=float(penetration))
     total = n * float(mean_pressure) if load_control else None
     modes = None if set_solver is not None else soft_modes(
         operator.grid, operator.multiplier * float(np.prod(operator.work_shape)), operator.E_star)

@@ -32,7 +32,7 @@ its true gap, so ``tol`` means what it means for every solver.
 
 Douglas-Rachford converges linearly, and slowly where the contact is small: 3 000-16 000 iterations on a
 1024-point profile at 0.3-2 % contact. A caller may pass ``finish``, a local method tried from the iterate
-(the semismooth Newton loop, :mod:`contactlib.nonsymmetric`): near the answer its contact set is nearly the
+(the semismooth Newton loop, :mod:`.nonsymmetric_choice`): near the answer its contact set is nearly the
 final one, where that loop converges in a few set updates even on bodies where it diverges from a cold start.
 """
 

@@ -8,18 +8,15 @@ stepping (:mod:`.transient`).
 
 from __future__ import annotations
 
-import math
-import numbers
 import time
 
 import numpy as np
 import xarray as xr
 
-from .. import surfaces
 from .._version import __version__
 from ..contact import ConvergenceError
 from ..invariants import verify_two_scale
-from ..inputs import check_iterations, check_tolerance, check_whole, number
+from ..inputs import number
 from ..labels import attrs_for, dataset
 from ..materials import contact_modulus
 from ..operators import Compliance
@@ -30,21 +27,10 @@ from .interaction import ACCURACY, PointInteraction
 from .laws import TabulatedLaw, tabulated_law
 from .macro import FiniteSize, HertzLaw, MacroState, solve_macro
 from .micro import MicroState, hertz_pressure_field, solve_micro, window_size
+from .scene import START_TOL_FACTOR, START_TOL_MIN  # noqa: F401  (public constants, documented in .scene)
+from .scene import MACRO_TOL, SCALES, check_separate_contacts, solver_tolerances, table_with_grid
 from .transient import solve_transient
 
-SCALES = ("macro", "two-scale")
-MACRO_TOL = 1e-4
-"""Default ``macro_tol`` of ``scale="macro"``: the forces within about 1e-4 of the largest of the converged ones
-(0.1-1.04e-4 measured at 300 and 10^3 asperities; the residual is measured with Ewald products of about the same
-accuracy, :data:`MACRO_ACCURACY`, so the bound holds to that accuracy for the exact sum), 30-60x below the
-point-load model's own error (0.3-0.6 % of the largest force against the full solver), and one Newton step (10 of
-25 interaction products at 10^3 asperities) fewer than 1e-8."""
-START_TOL_FACTOR = 1e-2
-"""Two-scale: the macro step only starts the sweeps (their fixed point does not depend on it), so by default
-it runs at this fraction of the outer tolerance (``force_tol``, else ``tol``), between :data:`START_TOL_MIN` and
-:data:`MACRO_TOL`."""
-START_TOL_MIN = 1e-8
-"""The tightest default start: tighter gains the sweeps nothing, and Newton's residual has a floor near 1e-15."""
 INTERACTION_ACCURACY_FACTOR = 0.1
 """Two-scale: the Ewald products' accuracy (:class:`.PointInteraction`) as a fraction of ``macro_tol``, between
 :data:`.interaction.ACCURACY` (1e-7) and :data:`INTERACTION_ACCURACY_MAX` (``scale="macro"``:
@@ -83,25 +69,6 @@ def _material(material, E, nu) -> tuple[float, float]:
     if E is None or nu is None:
         raise ValueError("material: give material=contactlib.Elastic(E, nu) or both E= and nu=")
     return E, nu
-
-
-def _table_with_grid(asperities, *, length, periodic, n, scale: str, law=None) -> AsperityTable:
-    """The validated table, with the caps built on an ``n x n`` grid when a Dataset feeds the two-scale
-    method (or ``n`` is given)."""
-    if n is not None:
-        check_whole(n, "n", 2)  # grid points per side
-    table = asperity_table(asperities, length=length, periodic=periodic,
-                           footprint_radius=None if law is None else law.footprint_radius)
-    if law is not None:
-        return table
-    if table.grid is None and (scale == "two-scale" or n is not None):
-        if n is None:
-            raise ValueError("n: the two-scale method needs a grid; give n= (points per side) with a Dataset")
-        built = surfaces.spheres(int(n), length=table.length, radius=table.radius, summit_height=table.summit_height,
-                                 centers=table.centers)
-        table = AsperityTable(table.centers, table.radius, table.summit_height, table.length, table.periodic,
-                              np.asarray(built.values, dtype=float), asperity_table(built).grid)
-    return table
 
 
 def solve(
@@ -231,22 +198,15 @@ def solve(
         mean_pressure = number("mean_pressure", mean_pressure, lower=0.0)
     if penetration is not None:
         penetration = number("penetration", penetration)
-    if macro_tol is None:
-        outer = force_tol if force_tol is not None else tol
-        valid = isinstance(outer, numbers.Real) and math.isfinite(outer) and outer > 0  # else refused below
-        macro_tol = (min(max(START_TOL_FACTOR * outer, START_TOL_MIN), MACRO_TOL) if scale == "two-scale" and valid
-                     else MACRO_TOL)
-    for name, value in (("tol", tol), ("macro_tol", macro_tol)) + ((("force_tol", force_tol),) if force_tol is not None
-                                                                    else ()):
-        check_tolerance(value, name)  # relative changes and residuals: in (0, 1)
-    check_iterations(max_iter)
+    macro_tol = solver_tolerances(scale, tol=tol, force_tol=force_tol, macro_tol=macro_tol, max_iter=max_iter,
+                                  macro_default=MACRO_TOL)
     if law is not None:
         if not isinstance(law, TabulatedLaw):
             raise ValueError(f"law must be None (Hertz) or a contactlib.two_scale.tabulated_law(...), got {law!r}")
         law_E_star = law.attrs.get("law_E_star", E_star)
         if abs(law_E_star / E_star - 1) > 1e-12:
             raise ValueError(f"law: tabulated with E* = {law_E_star!r}, the material has E* = {E_star!r}")
-    table = _table_with_grid(asperities, length=length, periodic=periodic, n=n, scale=scale, law=law)
+    table = table_with_grid(asperities, length=length, periodic=periodic, n=n, scale=scale, law=law)
     if law is not None and scale == "two-scale" and table.grid is None:
         raise ValueError("law: the two-scale method with a tabulated law needs the heights on a grid (a DataArray)")
     z_top = float(table.summit_height.max()) if table.heights is None else \
@@ -281,7 +241,7 @@ def solve(
         ds = _label(table, macro, None, params, law, E_star, z_top, length_unit, pressure_unit, fields=False)
         ds.attrs["converged"] = 0
         try:  # an iteration that wandered past the method's assumption: say so (the likelier cause)
-            _check_separate_contacts(table, law, macro, z_top)
+            check_separate_contacts(table, law, macro, z_top)
             why = ""
         except ValueError as err:
             why = f"; its last iterate is past the method's assumption ({err})"
@@ -289,7 +249,7 @@ def solve(
                                            f"iterations: residual {macro.residual:.3e} > macro_tol {macro_tol:.1e}{why}")
         raise ConvergenceError(ds.attrs["convergence_message"], residual=macro.residual, dataset=ds)
     try:
-        _check_separate_contacts(table, law, macro, z_top)
+        check_separate_contacts(table, law, macro, z_top)
     except ValueError:
         if total_force is None:
             raise
@@ -341,7 +301,7 @@ def _separate_caps_limit(table: AsperityTable, interaction, law, correction, z_t
         state = solve_macro(table, interaction, law, penetration=delta, z_top=z_top, tol=macro_tol, max_iter=max_iter,
                             finite_size=correction)
         try:
-            _check_separate_contacts(table, law, state, z_top)
+            check_separate_contacts(table, law, state, z_top)
         except ValueError as err:
             message = str(err)  # without its "mean_pressure/penetration: ... carry:" preamble
             return message.split("carry: ", 1)[-1] if "carry: " in message else message.split(": ", 1)[-1], state
@@ -366,26 +326,6 @@ def _beyond_separate_caps(mean_pressure: float, limit: float, approach: float, w
             f"at most a mean pressure of about {limit:.4g} (approach {approach:.4g}); just beyond it {why}. The "
             f"two-scale method assumes separate contacts: ask for less than {limit:.4g}, or solve the heights with "
             "contactlib.solve")
-
-
-def _check_separate_contacts(table: AsperityTable, law: HertzLaw, macro: MacroState, z_top: float) -> None:
-    """Refuse a load beyond what separate spherical contacts carry, saying where the assumption breaks:
-    a cap pressed down to the base (local penetration >= summit height; its contact then fills the
-    footprint and meets the flat between asperities), or the body reaching the base plane."""
-    ratio = macro.local_penetration / table.summit_height
-    worst = int(np.argmax(ratio))
-    if ratio[worst] >= 1.0:
-        a = float(law.contact_radius(macro.local_penetration[worst : worst + 1])[0])
-        raise ValueError(
-            f"mean_pressure/penetration: the load is beyond what separate spherical contacts carry: asperity {worst} "
-            f"is pressed by {macro.local_penetration[worst]:.4g}, beyond its summit height "
-            f"{table.summit_height[worst]:.4g} (contact radius {a:.4g} by the single-asperity law, footprint radius "
-            f"{table.footprint_radius[worst]:.4g}), at approach {macro.penetration:.4g}: the body meets the base "
-            "around it and the contacts are no longer separate caps")
-    if macro.penetration >= z_top:
-        raise ValueError(f"mean_pressure/penetration: the approach {macro.penetration:.4g} reaches the base plane "
-                         f"(highest point {z_top:.4g}): the body touches between the asperities, so the contacts are "
-                         "no longer separate caps")
 
 
 def _label(table: AsperityTable, macro: MacroState, micro: MicroState | None, params: dict, law, E_star: float,

@@ -13,7 +13,8 @@ import numpy as np
 
 from .. import fft
 from .._numba import jit
-from .interaction import PointInteraction, _gather, _gaussian_factors, _spread, even_fast_size, mesh_wavenumbers
+from .interaction import PointInteraction, even_fast_size, gather_from_mesh, gaussian_factors, mesh_wavenumbers, \
+    spread_on_mesh
 
 
 def solve_contact_compliance(interaction: PointInteraction, slope: np.ndarray, rhs: np.ndarray, *,
@@ -173,7 +174,7 @@ class SmoothPreconditioner:
         # one node per two widths: the Gaussians are a smoothing here, not a quadrature to be resolved
         self._mesh = m = max(even_fast_size(length / (2.0 * width)), 4)
         spacing = length / m
-        self.factors = _gaussian_factors(centers, length, m, width, 3.0) if factors is None else factors
+        self.factors = gaussian_factors(centers, length, m, width, 3.0) if factors is None else factors
         boussinesq, smoothing, self_term = _smooth_symbols(length, m, width, E_star)
         # D' keeps diag(D' + T_s) = diag(K); floored: a preconditioner must stay positive definite
         self._inverse = 1.0 / np.maximum(diagonal - self_term, 0.5 * diagonal)
@@ -204,10 +205,11 @@ class SmoothPreconditioner:
         """``out = M residual``; returns ``residual . out``."""
         plan = self._plan
         plan.real.fill(0.0)
-        _spread(*self.factors, self._inverse * residual, plan.real)  # the interaction's own spreading and gathering
+        # the interaction's own spreading and gathering
+        spread_on_mesh(*self.factors, self._inverse * residual, plan.real)
         spectrum = plan.forward()
         spectrum *= self._multiplier
-        _gather(*self.factors, plan.inverse(), out)
+        gather_from_mesh(*self.factors, plan.inverse(), out)
         return _smooth_finish(self._inverse, residual, out)
 
 

@@ -36,8 +36,8 @@ directly instead (Ewald with ``alpha L = 7.2``, so that the real-space part is t
 ``erfc(alpha r)/r`` over all pairs and the reciprocal part about 240 modes, a product of ``N x 240``
 factors), at 10^3 asperities the real part took 78 ms and the reciprocal 64 ms (one core), 5x a whole
 macro solve by products as it was then (about 20 ms; 2-3 ms now), and a Cholesky factor 21 ms more; at 200
-asperities 11 ms against about 4 ms. Spreading and gathering use the Gaussians' separable form (:func:`_spread`,
-:func:`_gather`): ``4 P`` numbers per asperity instead of a sparse matrix's ``2 P^2``, and nothing to
+asperities 11 ms against about 4 ms. Spreading and gathering use the Gaussians' separable form (:func:`spread_on_mesh`,
+:func:`gather_from_mesh`): ``4 P`` numbers per asperity instead of a sparse matrix's ``2 P^2``, and nothing to
 build but the 1D factors.
 """
 
@@ -152,7 +152,7 @@ class PointInteraction:
         centers, L, alpha = self._geometry
         m, multiplier, mesh_diagonal = _ewald_mesh(L, alpha, self.E_star, mesh_spacing / alpha)
         self._multiplier, self._mesh = multiplier, m
-        self._rows, self._cols, self._gx, self._gy = _gaussian_factors(centers, L, m, GAUSSIAN_WIDTH / alpha, support)
+        self._rows, self._cols, self._gx, self._gy = gaussian_factors(centers, L, m, GAUSSIAN_WIDTH / alpha, support)
         # T_kk: no pair is an asperity with itself (r_c < L/2), so the short-range part adds nothing
         self.diagonal = np.full(self.count, self._self_term + self._shift + mesh_diagonal)
 
@@ -199,11 +199,12 @@ class PointInteraction:
             return _direct_sum(self.centers, forces, self.E_star)
         plan = fft.get_fft((self._mesh, self._mesh), slot="ewald")
         plan.real.fill(0.0)
-        _spread(self._rows, self._cols, self._gx, self._gy, forces, plan.real)
+        spread_on_mesh(self._rows, self._cols, self._gx, self._gy, forces, plan.real)
         spectrum = plan.forward()
         spectrum *= self._multiplier
         out = np.empty(self.count)
-        _gather(self._rows, self._cols, self._gx, self._gy, plan.inverse(), out)  # the node area is in the multiplier
+        # the node area is in the multiplier
+        gather_from_mesh(self._rows, self._cols, self._gx, self._gy, plan.inverse(), out)
         _add_short_range(self._pair_k, self._pair_l, self._pair_w, *self._pair_term, forces, self._self_term,
                          self._shift, out)
         return out
@@ -291,12 +292,13 @@ def _add_short_range(k, l, w, factor, node_values, forces, self_term, shift, out
         out[b] += weight * forces[a]
 
 
-def _gaussian_factors(centers: np.ndarray, L: float, m: int, s: float, support: float):
+def gaussian_factors(centers: np.ndarray, L: float, m: int, s: float, support: float):
     """The periodised Gaussian ``exp(-r^2/2s^2) / (2 pi s^2)`` of each centre on the mesh nodes ``i L / m``
     within ``support s`` along each axis, in its separable form: mesh rows ``(N, P)`` (wrapped), each
     block's first column ``(N,)`` and the 1D factors ``gx``, ``gy`` ``(N, P)``; the node
-    ``(rows[k, i], (cols[k] + j) mod m)`` weighs ``gx[k, i] gy[k, j]``. :func:`_spread` and :func:`_gather` read
-    ``4 P`` numbers per asperity where the sparse matrix of :func:`_gaussian_gather` holds ``2 P^2``."""
+    ``(rows[k, i], (cols[k] + j) mod m)`` weighs ``gx[k, i] gy[k, j]``. :func:`spread_on_mesh` and
+    :func:`gather_from_mesh` read ``4 P`` numbers per asperity where the sparse matrix of :func:`_gaussian_gather`
+    holds ``2 P^2``."""
     h = L / m
     reach = support * s / h
     p = int(math.floor(2 * reach + 1e-9)) + 1  # nodes within [c - reach h, c + reach h] along an axis
@@ -317,7 +319,7 @@ def _gaussian_factors(centers: np.ndarray, L: float, m: int, s: float, support: 
 
 @jit
 def _fill_gaussians(first, start, ratio, steps, m, rows, cols, gx, gy):
-    """The factors of :func:`_gaussian_factors` from each block's first node ``first`` (N, 2), its Gaussian
+    """The factors of :func:`gaussian_factors` from each block's first node ``first`` (N, 2), its Gaussian
     ``start`` and ``ratio`` (N, 2) and the table ``steps`` (P,). Along an axis from the first node's offset ``x0``,
     ``exp(-(x0 + i h)^2 / 2s^2) = exp(-x0^2 / 2s^2) exp(-x0 h / s^2)^i exp(-i^2 h^2 / 2s^2)``: two exponentials per
     asperity and axis and a table of ``p`` (fast Gaussian gridding, Greengard & Lee, SIAM Rev. 46 (2004) 443),
@@ -337,8 +339,8 @@ def _fill_gaussians(first, start, ratio, steps, m, rows, cols, gx, gy):
                 value *= step
 
 
-def _spread(rows, cols, gx, gy, forces, mesh):
-    """``mesh += sum_k forces[k] G_k`` (:func:`_gaussian_factors`' separable Gaussians; ``mesh`` zeroed by the
+def spread_on_mesh(rows, cols, gx, gy, forces, mesh):
+    """``mesh += sum_k forces[k] G_k`` (:func:`gaussian_factors`' separable Gaussians; ``mesh`` zeroed by the
     caller): into a copy of the mesh widened by the support ``P`` (no wrap inside the loops), folded back."""
     p = gx.shape[1]
     if p > mesh.shape[1]:  # supports wider than the mesh: the kernel that wraps every column
@@ -349,9 +351,9 @@ def _spread(rows, cols, gx, gy, forces, mesh):
     _fold(widened, mesh)
 
 
-def _gather(rows, cols, gx, gy, mesh, out):
+def gather_from_mesh(rows, cols, gx, gy, mesh, out):
     """``out[k] = sum_nodes G_k mesh``: from a copy of the mesh widened by the support (its first columns
-    repeated), as :func:`_spread`."""
+    repeated), as :func:`spread_on_mesh`."""
     p = gx.shape[1]
     if p > mesh.shape[1]:
         _gather_wrapping(rows, cols, gx, gy, mesh, out)
@@ -418,7 +420,7 @@ def _unfold(mesh, widened):
 
 @jit
 def _spread_wrapping(rows, cols, gx, gy, forces, mesh):
-    """:func:`_spread` on a mesh narrower than the support. ``cols[k]`` is the first column of asperity ``k``'s
+    """:func:`spread_on_mesh` on a mesh narrower than the support. ``cols[k]`` is the first column of asperity ``k``'s
     block: a contiguous run of the row unless it wraps past the mesh's edge."""
     n, p = gx.shape
     m = mesh.shape[1]
@@ -437,7 +439,7 @@ def _spread_wrapping(rows, cols, gx, gy, forces, mesh):
 
 @jit
 def _gather_wrapping(rows, cols, gx, gy, mesh, out):
-    """:func:`_gather` on a mesh narrower than the support."""
+    """:func:`gather_from_mesh` on a mesh narrower than the support."""
     n, p = gx.shape
     m = mesh.shape[1]
     for k in range(n):
@@ -457,7 +459,7 @@ def _gather_wrapping(rows, cols, gx, gy, mesh, out):
 
 
 def _gaussian_gather(centers: np.ndarray, L: float, m: int, s: float, support: float) -> sparse.csr_matrix:
-    """Sparse ``(N, m*m)`` matrix of the periodised Gaussians of :func:`_gaussian_factors`: the gathering
+    """Sparse ``(N, m*m)`` matrix of the periodised Gaussians of :func:`gaussian_factors`: the gathering
     operator; its transpose spreads. Built row by row directly in CSR (``P^2`` entries a row). The
     products use the separable kernels instead; this matrix is their independent check (tests)."""
     h = L / m

@@ -30,8 +30,6 @@ micro scale converges to the full transient solver's step, up to its tolerance.
 
 from __future__ import annotations
 
-import math
-import numbers
 import time as _time
 import warnings
 
@@ -42,18 +40,18 @@ from .._version import __version__
 from ..contact import ConvergenceError
 from ..invariants import verify_two_scale_series
 from ..hereditary import PronyHistory
-from ..inputs import check_iterations, check_tolerance
+from ..inputs import load_history, time_values
 from ..labels import attrs_for
 from ..materials import contact_modulus, material_of
 from ..operators import Compliance
-from ..transient import INITIAL_STATES, MODELS_KEPT, _history, _times
+from ..transient import INITIAL_STATES, MODELS_KEPT
 from .asperities import AsperityTable, asperity_forces
 from .interaction import PointInteraction
 from .laws import TabulatedLaw
 from .macro import FiniteSize, HertzLaw, MacroState, solve_macro
 from .micro import solve_micro
+from .scene import SCALES, check_separate_contacts, solver_tolerances, table_with_grid
 
-SCALES = ("macro", "two-scale")
 MACRO_TOL_TRANSIENT = 1e-10
 """Default ``macro_tol`` of ``scale="macro"`` steps: the macro forces are then the answer, and each step's
 memory carries their error on."""
@@ -140,28 +138,20 @@ def solve_transient(
         raise ValueError(f"scale must be one of {SCALES}, got {scale!r}")
     if initial not in INITIAL_STATES:
         raise ValueError(f"initial must be one of {INITIAL_STATES}, got {initial!r}")
-    times = _times(times)
+    times = time_values(times, "times")
     if (mean_pressure is None) == (penetration is None):
         raise ValueError("give exactly one of mean_pressure or penetration")
     control = "mean_pressure" if mean_pressure is not None else "penetration"
-    loads = _history(mean_pressure if mean_pressure is not None else penetration, times, control)
+    loads = load_history(mean_pressure if mean_pressure is not None else penetration, times, control)
     if control == "mean_pressure" and np.any(loads < 0):
         raise ValueError(f"mean_pressure must be >= 0 at every time, got {loads.min()!r}")
-    from . import MACRO_TOL, START_TOL_FACTOR, START_TOL_MIN, _table_with_grid  # the package imports this module
-    if macro_tol is None:
-        outer = force_tol if force_tol is not None else tol
-        valid = isinstance(outer, numbers.Real) and math.isfinite(outer) and outer > 0  # else refused below
-        macro_tol = min(max(START_TOL_FACTOR * outer, START_TOL_MIN), MACRO_TOL) if scale == "two-scale" and valid \
-            else MACRO_TOL_TRANSIENT
-    for name, value in (("tol", tol), ("macro_tol", macro_tol)) + ((("force_tol", force_tol),) if force_tol is not None
-                                                                    else ()):
-        check_tolerance(value, name)
-    check_iterations(max_iter)
+    macro_tol = solver_tolerances(scale, tol=tol, force_tol=force_tol, macro_tol=macro_tol, max_iter=max_iter,
+                                  macro_default=MACRO_TOL_TRANSIENT)
     if law is not None:
         if not isinstance(law, TabulatedLaw):
             raise ValueError(f"law must be None (Hertz) or a contactlib.two_scale.tabulated_law(...), got {law!r}")
         law.at_modulus(contact_modulus(material.E0, material.nu))  # refuses a table without its modulus
-    table = _table_with_grid(asperities, length=length, periodic=periodic, n=n, scale=scale, law=law)
+    table = table_with_grid(asperities, length=length, periodic=periodic, n=n, scale=scale, law=law)
     if law is not None and scale == "two-scale" and table.grid is None:
         raise ValueError("law: the two-scale method with a tabulated law needs the heights on a grid (a DataArray)")
     stepper = _Stepper(table, material, scale, control, float(tol), float(macro_tol), int(max_iter), law,
@@ -247,7 +237,6 @@ class _Stepper:
 
     def _solve(self, E_eff: float, g, load: float) -> tuple[dict, np.ndarray]:
         """The step's problem; returns the step's scalars and the field the memory carries on."""
-        from . import _check_separate_contacts
         E_star, interaction, law, compliance, finite_size = self.model(E_eff)
         table = self.table
         if g is None:
@@ -264,7 +253,7 @@ class _Stepper:
             raise ConvergenceError(f"macro step: Newton did not converge in {carried.iterations} iterations: residual "
                                    f"{carried.residual:.3e} > macro_tol {self.macro_tol:.1e}",
                                    residual=carried.residual, dataset=None)
-        _check_separate_contacts(table, law, carried, self.z_top)
+        check_separate_contacts(table, law, carried, self.z_top)
         if isinstance(law, TabulatedLaw) and np.any(carried.local_penetration > law.max_penetration):
             raise ValueError(f"law: the local penetration {float(carried.local_penetration.max()):.4g} exceeds the "
                              f"table's max_penetration {law.max_penetration:.4g}: tabulate further")

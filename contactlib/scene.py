@@ -1,0 +1,104 @@
+"""A validated scene: everything :func:`contactlib.solve` takes except the load, checked once, on one path.
+
+Every entry point reads its scene here: :func:`contactlib.prepare` (and so :func:`contactlib.solve`,
+:func:`contactlib.solve_tolerances`, :func:`contactlib.solve_speeds`, :func:`contactlib.adhesion_curve`) and the
+time-stepping drivers (:func:`contactlib.solve_transient`, :func:`contactlib.solve_reciprocating`), which add their
+path (times, loads, positions) and never their own copy of these checks. The checks themselves are the vocabulary
+of :mod:`contactlib.inputs`; each refuses with a ``ValueError`` naming the parameter, before anything is built.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+
+import numpy as np
+
+from . import accuracy, adhesive_contact
+from .bodies import Layer
+from .grid import Grid
+from .inputs import check_friction, check_iterations, check_tolerance, check_velocity, grid_of, periodic_of
+from .materials import Elastic, Viscoelastic, material_of
+from .operators import KERNELS
+
+METHODS = ("cg", "active-set")
+"""The normal-contact methods a scene may ask for (:func:`contactlib.solve`'s ``method``)."""
+
+
+@dataclasses.dataclass(frozen=True)
+class Scene:
+    """A validated scene (:func:`scene_of`): the heights on their grid, the body, the interface, the window and the
+    solver options. Read-only; a path driver builds its problem or stepper on it."""
+
+    values: np.ndarray
+    """The rigid surface's heights [length] on :attr:`grid` (C-contiguous floats)."""
+    grid: Grid
+    dims: tuple
+    """Dimension names of the fields (``("x",)`` or ``("x", "y")``)."""
+    coords: dict
+    """Coordinates of the fields (the heights' own, or the grid's)."""
+    material: Elastic | Viscoelastic
+    layer: Layer | None
+    periodic: bool
+    tol: float
+    max_iter: int
+    kernel: str
+    method: str
+    friction: float
+    sliding_direction: float
+    """Direction [rad] in which the rigid surface moves (a profile: 0 or pi)."""
+    velocity: tuple | None
+    """Steady sliding velocity, one component per axis [length/time], or None."""
+    adhesion: object = None
+    target_error: float | None = None
+    length_unit: str = "m"
+    pressure_unit: str = "Pa"
+    heights: object = None
+    """The heights as given (a DataArray keeps its coordinates and attrs for a scene at another speed)."""
+    length: object = None
+    """``length`` as given."""
+    sliding_direction_given: float | None = None
+    """``sliding_direction`` as given (None: from the velocity), checked again against another speed's velocity."""
+
+
+def scene_of(heights, *, E=None, nu=None, material=None, periodic=None, tol=None, max_iter=10_000,
+             kernel="spectral", method="cg", length=None, target_error=None, layer=None, friction=0.0,
+             sliding_direction=None, sliding_velocity=None, adhesion=None, length_unit="m", pressure_unit="Pa",
+             default_tol=1e-8) -> Scene:
+    """Validate a scene as :func:`contactlib.solve` documents its arguments; ``default_tol`` where ``tol`` and
+    ``target_error`` are both None (an adhesive scene's is :data:`contactlib.adhesive_contact.DEFAULT_TOL`)."""
+    periodic = periodic_of(heights, periodic)
+    material = material_of(material, E, nu)
+    values, grid, dims, coords = grid_of(heights, length)
+    nu = material.nu
+    if adhesion is not None:
+        adhesive_contact.check_scene(adhesion, values, spacing=grid.spacing, friction=friction, method=method)
+    if target_error is not None:
+        if tol is not None:
+            raise ValueError("give tol or target_error, not both")
+        tol = accuracy.tolerance_for(target_error)
+        if periodic:
+            accuracy.check_resolution(values, target_error, length=grid.lengths)
+    tol = (default_tol if adhesion is None else adhesive_contact.DEFAULT_TOL) if tol is None else tol
+    check_tolerance(tol, "tol")
+    check_iterations(max_iter)
+    if kernel not in KERNELS:
+        raise ValueError(f"kernel must be one of {KERNELS}, got {kernel!r}")
+    if method not in METHODS:
+        raise ValueError(f"method must be one of {METHODS}, got {method!r}")
+    check_friction(layer, friction, sliding_direction, nu, method, kernel, periodic)
+    given_direction = sliding_direction
+    velocity, sliding_direction = check_velocity(sliding_velocity, sliding_direction, grid.dim, material, method,
+                                                  periodic)
+    if grid.dim == 1:
+        if abs(math.sin(sliding_direction)) > 1e-4:  # pi to four decimals (3.1416) passes
+            raise ValueError(f"sliding_direction must be 0 (+x) or pi (-x) for a profile (1D heights), got "
+                             f"{sliding_direction!r}")
+        sliding_direction = 0.0 if math.cos(sliding_direction) > 0 else math.pi  # 3.1416 from a command line: pi
+    if adhesion is not None and velocity is not None and any(v != 0 for v in velocity):
+        raise ValueError(f"sliding_velocity: adhesion is modelled at rest (a steady sliding adhesive contact is not "
+                         f"supported), got sliding_velocity={sliding_velocity!r} with adhesion")
+    return Scene(values, grid, dims, coords, material, layer, periodic, tol, int(max_iter), kernel, method,
+                 float(friction), float(sliding_direction), velocity, adhesion,
+                 None if target_error is None else float(target_error), length_unit, pressure_unit, heights, length,
+                 given_direction)
