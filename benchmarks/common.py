@@ -182,39 +182,35 @@ def load_for_contact(h, target: float) -> float:
     return float(mid)
 
 
-# ------------------------------------------------------------------------------ contactlib's internals (issue 39)
+# ------------------------------------------------------------ one solver of a prepared problem, timed alone
 
 def prepared_problem(heights, *, material, mean_pressure=None, penetration=None, **options):
-    """A validated scene with its operators, as :func:`contactlib.solve` builds it, for the benchmarks that time
-    one solver of a non-symmetric problem alone (:func:`nonsymmetric_solve`). ``options``: any other keyword of
+    """A validated scene with its operators (:func:`contactlib.prepare`) carrying one load, for the benchmarks that
+    time one solver of a non-symmetric problem alone (:func:`nonsymmetric_solve`). ``options``: any other keyword of
     ``solve`` (``friction``, ``layer``, ``sliding_velocity``, ``tol``, ``max_iter``, ...)."""
-    # issue 39: switch to contactlib.prepare once it lands
-    from contactlib.contact import _setup
-
     friction = options.get("friction", 0.0)
-    keywords = dict(periodic=True, tol=1e-8, max_iter=10_000, kernel="spectral", method="cg", length=None,
-                    initial_pressure=None, target_error=None, layer=None, friction=0.0,
-                    sliding_direction=0.0 if friction else None, sliding_velocity=None)
-    keywords.update(options)
-    return _setup(heights, material=material, mean_pressure=mean_pressure, penetration=penetration, **keywords)
+    options.setdefault("sliding_direction", 0.0 if friction else None)
+    problem = contactlib.prepare(heights, material=material, **options)
+    return problem.loaded(mean_pressure=mean_pressure, penetration=penetration)
 
 
 def nonsymmetric_solve(problem, route: str, **kwargs):
-    """One route of a prepared non-symmetric problem: ``"dispatch"`` (what ``solve`` runs), ``"krylov"``
+    """One route of a loaded non-symmetric problem: ``"dispatch"`` (what ``solve`` runs), ``"krylov"``
     (semismooth GMRES; ``kwargs`` e.g. ``first_try=True``), ``"splitting"`` (Douglas-Rachford as the dispatch runs
     it), ``"coupled"`` (the fixed point on the skew part) or ``"douglas-rachford"`` (the bare splitting solver on
     :func:`complex_multiplier`, or on ``kwargs["multiplier"]``). Returns the solver's state."""
-    # issue 39: switch to contactlib.prepare once it lands (Problem.solve and the operator as public attributes)
+    from contactlib.solvers import nonsymmetric_choice
+
     if route == "dispatch":
         return problem.run()
     if route == "krylov":
-        return problem._krylov(**kwargs)
+        return nonsymmetric_choice.solve_krylov(problem, **kwargs)
     if route == "splitting":
-        return problem._splitting()
+        return nonsymmetric_choice.solve_split(problem)
     if route == "coupled":
         from contactlib.solvers import solve_coupled
 
-        return solve_coupled(problem._symmetric, problem.body.coupling, problem.values, **problem.solver_args)
+        return solve_coupled(problem.solve_symmetric, problem.body.coupling, problem.values, **problem.solver_args)
     if route == "douglas-rachford":
         from contactlib.solvers.splitting import solve_splitting
 
@@ -228,7 +224,6 @@ def nonsymmetric_solve(problem, route: str, **kwargs):
 
 def complex_multiplier(problem) -> np.ndarray:
     """The Fourier multiplier of a prepared problem's body, its coupling included (complex where it is skew)."""
-    # issue 39: switch to contactlib.prepare once it lands (the operator as a public attribute)
     from contactlib.solvers.splitting import fourier_multiplier
 
     return fourier_multiplier(problem.body.compliance, problem.body.coupling)
@@ -243,7 +238,7 @@ def iteration_internals(transforms, shape) -> SimpleNamespace:
 
     sweeps = _fused.select(shape)
     return SimpleNamespace(
-        workspace=transforms._workspace, offset=transforms._offset, sweeps=sweeps,
+        workspace=transforms.workspace, offset=transforms.offset_spectrum, sweeps=sweeps,
         threaded=sweeps is _fused.THREADED,
-        affine_pass=lambda rows: operators._spectrum_pass(operators._affine_spectrum, rows),
-        scale_power_pass=lambda rows: operators._spectrum_pass(operators._scale_and_power_sum, rows))
+        affine_pass=lambda rows: operators.spectrum_pass(operators.affine_spectrum, rows),
+        scale_power_pass=lambda rows: operators.spectrum_pass(operators.scale_and_power_sum, rows))

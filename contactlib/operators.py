@@ -68,7 +68,7 @@ def _threaded_scale_spectrum(spectrum, multiplier):
 
 
 @numba.njit(cache=True, nogil=True, boundscheck=False)
-def _affine_spectrum(spectrum, multiplier, offset, offset_scale):
+def affine_spectrum(spectrum, multiplier, offset, offset_scale):
     """``spectrum = spectrum * multiplier - offset_scale * offset`` in place (2D views), one pass."""
     for i in range(spectrum.shape[0]):
         for j in range(spectrum.shape[1]):
@@ -76,7 +76,7 @@ def _affine_spectrum(spectrum, multiplier, offset, offset_scale):
 
 
 @jit
-def _scale_and_power_sum(spectrum, multiplier, even):
+def scale_and_power_sum(spectrum, multiplier, even):
     """:func:`_weighted_power_sum` of ``spectrum``, then ``spectrum *= multiplier``: one pass."""
     last = spectrum.shape[1] - 1
     total = 0.0
@@ -101,7 +101,7 @@ def _threaded_scale_and_power_sum(spectrum, multiplier, even):
     part = np.empty((blocks, 1))
     for b in numba.prange(blocks):
         r = slice(b * size, min((b + 1) * size, spectrum.shape[0]))
-        part[b, 0] = _scale_and_power_sum(spectrum[r], multiplier[r], even)
+        part[b, 0] = scale_and_power_sum(spectrum[r], multiplier[r], even)
     return column_sums(part)[0]
 
 
@@ -110,16 +110,16 @@ def _threaded_affine_spectrum(spectrum, multiplier, offset, offset_scale):
     blocks, size = row_blocks(spectrum.shape[0], spectrum.shape[1])
     for b in numba.prange(blocks):
         r = slice(b * size, min((b + 1) * size, spectrum.shape[0]))
-        _affine_spectrum(spectrum[r], multiplier[r], offset[r], offset_scale)
+        affine_spectrum(spectrum[r], multiplier[r], offset[r], offset_scale)
 
 
 # each pass over a half-spectrum, serial and threaded (one launch at a time: contactlib._numba.LAUNCH_LOCK)
 _SPECTRUM_PASSES = {serial: serialised(threaded) for serial, threaded in (
     (_weighted_power_sum, _threaded_weighted_power_sum), (_scale_spectrum, _threaded_scale_spectrum),
-    (_affine_spectrum, _threaded_affine_spectrum), (_scale_and_power_sum, _threaded_scale_and_power_sum))}
+    (affine_spectrum, _threaded_affine_spectrum), (scale_and_power_sum, _threaded_scale_and_power_sum))}
 
 
-def _spectrum_pass(serial, spectrum: np.ndarray):
+def spectrum_pass(serial, spectrum: np.ndarray):
     """``serial``, or its threaded version where the solvers' sweeps would thread (:mod:`contactlib._numba`)."""
     threaded = parallel_sweeps(spectrum.shape[0], 2 * spectrum.size)  # a half-spectrum: about the grid's size
     return _SPECTRUM_PASSES[serial] if threaded else serial
@@ -127,12 +127,12 @@ def _spectrum_pass(serial, spectrum: np.ndarray):
 
 def weighted_power_sum(spectrum: np.ndarray, multiplier: np.ndarray, even: bool) -> float:
     """:func:`_weighted_power_sum`, threaded like the solvers' sweeps (:mod:`contactlib._numba`)."""
-    return _spectrum_pass(_weighted_power_sum, spectrum)(spectrum, multiplier, even)
+    return spectrum_pass(_weighted_power_sum, spectrum)(spectrum, multiplier, even)
 
 
 def scale_spectrum(spectrum: np.ndarray, multiplier: np.ndarray) -> None:
     """:func:`_scale_spectrum`, threaded like the solvers' sweeps (the same bits either way)."""
-    _spectrum_pass(_scale_spectrum, spectrum)(spectrum, multiplier)
+    spectrum_pass(_scale_spectrum, spectrum)(spectrum, multiplier)
 
 
 def _rows(a: np.ndarray) -> np.ndarray:
@@ -168,7 +168,7 @@ class IterationTransforms:
 
     def __enter__(self) -> IterationTransforms:
         op = self.operator
-        ws = self._workspace = self._pool.__enter__()
+        ws = self.workspace = self._pool.__enter__()
         if not op.periodic:  # the padding of the inputs must be zero; only their block is ever written
             for name in ("pressure", "residual", "direction"):
                 ws.buffers[name].fill(0.0)
@@ -176,15 +176,15 @@ class IterationTransforms:
                                                         for k in ("pressure", "residual", "direction"))
         self._multiplier, self._inverse = _rows(op.multiplier), _rows(op.inverse_multiplier)
         self._even = op.work_shape[-1] % 2 == 0
-        self._offset = None
+        self.offset_spectrum = None
         if self._offset_field is not None:
             self.direction[...] = self._offset_field
-            self._offset = _rows(ws.forward("direction") / float(np.prod(op.work_shape)))
+            self.offset_spectrum = _rows(ws.forward("direction") / float(np.prod(op.work_shape)))
         self.direction.fill(0.0)
         return self
 
     def __exit__(self, *exc) -> None:
-        self._offset = None
+        self.offset_spectrum = None
         self._pool.__exit__(*exc)
 
     def take(self, name: str) -> np.ndarray:
@@ -192,19 +192,19 @@ class IterationTransforms:
         of the caller's, on the grid: periodic, the buffer itself, handed over without a copy (the pool
         gets a new one); zero-padded, a copy of the block. The offset's spectrum is dropped first: a
         solve takes its fields at the end, and its memory peaks there."""
-        self._offset = None
+        self.offset_spectrum = None
         if self.operator.periodic:
-            return self._workspace.detach(name)
-        return self._workspace.buffers[name][self.operator._block].copy()
+            return self.workspace.detach(name)
+        return self.workspace.buffers[name][self.operator._block].copy()
 
     def displacement(self, offset_scale: float = 0.0) -> np.ndarray:
         """``K pressure - offset_scale * offset`` [length], a view of the block."""
-        spectrum = _rows(self._workspace.forward("pressure"))
-        if self._offset is None or offset_scale == 0.0:
-            _spectrum_pass(_scale_spectrum, spectrum)(spectrum, self._multiplier)
+        spectrum = _rows(self.workspace.forward("pressure"))
+        if self.offset_spectrum is None or offset_scale == 0.0:
+            spectrum_pass(_scale_spectrum, spectrum)(spectrum, self._multiplier)
         else:
-            _spectrum_pass(_affine_spectrum, spectrum)(spectrum, self._multiplier, self._offset, offset_scale)
-        return self._workspace.inverse("displacement")[self.operator._block]
+            spectrum_pass(affine_spectrum, spectrum)(spectrum, self._multiplier, self.offset_spectrum, offset_scale)
+        return self.workspace.inverse("displacement")[self.operator._block]
 
     def lower_offset(self, field: np.ndarray) -> np.ndarray:
         """Subtract ``K field`` from the offset in Fourier space and return ``K field`` [length] (a view of
@@ -218,19 +218,19 @@ class IterationTransforms:
             plan.real.fill(0.0)
         plan.real[op._block] = field
         spectrum = _rows(plan.forward())
-        _spectrum_pass(_scale_spectrum, spectrum)(spectrum, self._multiplier)
-        self._offset -= spectrum  # the offset is kept as FFT(offset) / size: the multiplier has the 1 / size
+        spectrum_pass(_scale_spectrum, spectrum)(spectrum, self._multiplier)
+        self.offset_spectrum -= spectrum  # the offset is kept as FFT(offset) / size: the multiplier has the 1 / size
         return plan.inverse()[op._block]
 
     def precondition(self) -> tuple[np.ndarray, float]:
         """``(P residual, <residual, P residual>)``: a view of the block, and the sum over the grid."""
-        spectrum = _rows(self._workspace.forward("residual"))
-        power = _spectrum_pass(_scale_and_power_sum, spectrum)(spectrum, self._inverse, self._even)
-        return self._workspace.inverse("preconditioned")[self.operator._block], float(power)
+        spectrum = _rows(self.workspace.forward("residual"))
+        power = spectrum_pass(scale_and_power_sum, spectrum)(spectrum, self._inverse, self._even)
+        return self.workspace.inverse("preconditioned")[self.operator._block], float(power)
 
     def direction_energy(self) -> float:
         """``<direction, K direction>`` [length * pressure, summed over elements]."""
-        spectrum = _rows(self._workspace.forward("direction"))
+        spectrum = _rows(self.workspace.forward("direction"))
         return float(weighted_power_sum(spectrum, self._multiplier, self._even))
 
 

@@ -10,8 +10,8 @@ from contactlib import fft
 from contactlib import _numba
 from contactlib._numba import PARALLEL_MIN_SIZE, parallel_sweeps
 from contactlib.operators import (
-    _affine_spectrum,
-    _scale_and_power_sum,
+    affine_spectrum,
+    scale_and_power_sum,
     _scale_spectrum,
     _threaded_affine_spectrum,
     _threaded_scale_and_power_sum,
@@ -107,12 +107,12 @@ def test_threaded_spectrum_passes(two_threads):
     np.testing.assert_array_equal(a, spectrum * multiplier)  # numpy's bits: no fast-math in the multiply
     offset = rng.standard_normal((512, 257)) + 1j * rng.standard_normal((512, 257))
     a, b = spectrum.copy(), spectrum.copy()
-    _affine_spectrum(a, multiplier, offset, 0.7)
+    affine_spectrum(a, multiplier, offset, 0.7)
     _threaded_affine_spectrum(b, multiplier, offset, 0.7)
     np.testing.assert_array_equal(a, b)
     np.testing.assert_array_equal(a, spectrum * multiplier - 0.7 * offset)
     a, b = spectrum.copy(), spectrum.copy()
-    power = _scale_and_power_sum(a, multiplier, True)
+    power = scale_and_power_sum(a, multiplier, True)
     numba.set_num_threads(1)
     assert _threaded_scale_and_power_sum(b.copy(), multiplier, True) == _threaded_scale_and_power_sum(b, multiplier, True)
     numba.set_num_threads(MAX_THREADS)
