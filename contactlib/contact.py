@@ -9,10 +9,10 @@ import time
 import numpy as np
 import xarray as xr
 
-from . import accuracy, adhesive_contact, fft, resolution
+from . import accuracy, adhesive_contact, area_target, fft, resolution
 from .analysis.friction import interlocking_friction
 from ._version import __version__
-from .labels import attrs_for, to_dataset
+from .labels import attrs_for, to_dataset, window_variables
 from .analysis.viscoelastic import traction_power
 from .materials import Elastic, Viscoelastic, contact_modulus, material_of
 from .bodies import BodyModel, Layer, body_model
@@ -72,6 +72,7 @@ def solve(
     material: Elastic | Viscoelastic | None = None,
     sliding_velocity=None,
     adhesion=None,
+    contact_area: float | None = None,
 ) -> xr.Dataset:
     """Normal contact of a rigid rough surface on an elastic or viscoelastic half-space or layer, with
     Coulomb friction and steady sliding.
@@ -162,12 +163,20 @@ def solve(
         ``mean_pressure`` (the applied traction, adhesive part included) and ``penetration`` may then be
         negative. Adds ``adhesive_pressure`` (the tensile part of ``pressure``) and ``interaction_area``;
         ``contact_area`` is the repulsive (closed) area (:mod:`contactlib.adhesive_contact`).
+    contact_area : float, optional
+        Solve to this contact area fraction in (0, 1) instead of a load: the state whose area is nearest it on the
+        grid (the area rises in whole elements), with the ``mean_pressure`` that gives it, found by bracketing the
+        load over solves of one scene (:mod:`contactlib.area_target`); ``attrs['target_contact_area']``. Not with
+        ``mean_pressure``, ``penetration`` or ``adhesion``.
 
     Returns
     -------
     xarray.Dataset
         ``pressure``, ``gap``, ``displacement`` fields and scalars ``contact_area``,
-        ``mean_pressure``, ``penetration``, ``iterations``, ``residual``; with friction, also the
+        ``mean_pressure``, ``penetration``, ``mean_gap``, ``iterations``, ``residual``; non-periodic, the load as
+        a force and the contact's size (:func:`contactlib.labels.window_variables`): ``normal_force``
+        (``mean_pressure`` times the window area) and ``contact_radius`` (``sqrt(A / pi)``), or on a profile
+        ``line_load`` and ``contact_half_width``; with friction, also the
         tangential traction and (periodic) the tangential displacement fields, and
         ``friction_coefficient_interlocking`` (``mu_a``, :func:`interlocking_friction`) and
         ``friction_coefficient`` (``mu_c + mu_a``); sliding (``sliding_velocity``), also those two and
@@ -175,6 +184,23 @@ def solve(
         (:mod:`contactlib.bodies`: the half-space where a layer is within tolerance of it, no
         coupling where it vanishes); ``attrs['full_contact']`` is 1, with a message, when the
         contact is complete (the load no longer changes the area).
+
+    Raises
+    ------
+    ValueError
+        Naming the argument: a bad value, a missing or doubled load, an option the scene does not support, or a
+        non-periodic contact cut by the window's edge.
+    ConvergenceError
+        When the solver does not reach ``tol`` in ``max_iter`` (or stalls), with its residual and partial state.
+    contactlib.invariants.InvariantError
+        When a converged state breaks a physical invariant (load balance, sign, complementarity, ...).
+
+    Warns
+    -----
+    ResolutionWarning
+        When the grid resolves the scene worse than the measured rule asks for 1 % (:mod:`contactlib.resolution`).
+    contactlib.accuracy.AccuracyWarning
+        With ``target_error``, when the grid is too coarse for it.
 
     Examples
     --------
@@ -185,13 +211,16 @@ def solve(
     True
     """
     periodic = periodic_of(heights, periodic)
+    if contact_area is not None:  # the load is what is sought: the scene is built at a provisional one
+        mean_pressure = area_target.check(contact_area, mean_pressure=mean_pressure, penetration=penetration,
+                                          adhesion=adhesion)
     setup = _setup(heights, material=material_of(material, E, nu), mean_pressure=mean_pressure,
                    penetration=penetration, periodic=periodic, tol=tol, max_iter=max_iter, kernel=kernel,
                    method=method, length=length, initial_pressure=initial_pressure, target_error=target_error,
                    layer=layer, friction=friction, sliding_direction=sliding_direction,
                    sliding_velocity=sliding_velocity, adhesion=adhesion)
     start = time.perf_counter()
-    state = setup.run()
+    state = setup.run() if contact_area is None else area_target.run(setup, contact_area)
     if target_error is not None and adhesion is None:
         state = accuracy.solve_on_for_scene(setup, state)
     wall = time.perf_counter() - start
@@ -328,6 +357,8 @@ class _Setup(NonSymmetricSolve):
             extra["outer_iterations"] = xr.Variable((), state.outer_iterations, attrs_for("outer_iterations"))
         if self.attrs["friction"] > 0 or "sliding_velocity" in self.attrs:
             extra.update(self._friction_variables(state, length_unit, pressure_unit))
+        extra.update(window_variables(state, self.grid.lengths, periodic=self.operator.periodic,
+                                      length_unit=length_unit, pressure_unit=pressure_unit))
         ds = to_dataset(state, dims=self.dims, coords=self.coords, length_unit=length_unit,
                         pressure_unit=pressure_unit, extra=extra)
         ds.attrs.update({"solver": state.solver, **self.attrs, "converged": int(state.converged), "wall_time": wall,
