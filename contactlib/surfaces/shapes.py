@@ -127,7 +127,7 @@ def paraboloid(n: int, *, length: float = 1.0, radius: float, dim: int = 2, leng
     --------
     >>> import contactlib
     >>> h = contactlib.surfaces.paraboloid(64, length=1.0, radius=1.0)
-    >>> float(h.x[int(h.argmax())])  # the apex is at the window's centre
+    >>> float(h.sel(y=0.5).idxmax())  # the apex is at the window's centre
     0.5
     """
     radius = number("radius", radius, lower=0.0, lower_open=True)
