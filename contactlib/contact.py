@@ -32,6 +32,16 @@ class ConvergenceError(RuntimeError):
     """A solve did not reach its tolerance within ``max_iter``, or stalled before it (the CG
     residual stopped falling, e.g. at the round-off floor of a tolerance set too tight).
 
+
+    Parameters
+    ----------
+    message : str
+        What did not converge, with the residual and the tolerance.
+    residual : float
+        The residual reached.
+    dataset : xarray.Dataset
+        The partial state.
+
     Attributes
     ----------
     residual : float
@@ -258,6 +268,30 @@ def solve_tolerances(
     Periodic displacement control (the dual solver) checks the primal residual, one convolution,
     at every iteration whose own residual is below the loosest tolerance, not only the tightest:
     its times there include those checks, which a separate looser solve partly skips.
+
+
+    Parameters
+    ----------
+    heights : xarray.DataArray or ndarray
+        As :func:`solve`.
+    tols : sequence of float
+        The tolerances, each in (0, 1).
+    E, nu : float
+        Young's modulus [pressure] and Poisson ratio.
+    mean_pressure, penetration : float
+        The load, as :func:`solve` (one of them).
+    periodic : bool, optional
+        As :func:`solve`.
+    max_iter : int
+        Iteration bound of the one solve.
+    kernel : {"spectral", "love"}
+        As :func:`solve`.
+    length : float or tuple, optional
+        Window size [length], required for bare-array heights.
+    initial_pressure : ndarray, optional
+        Warm start.
+    length_unit, pressure_unit : str
+        udunits strings written to the outputs' ``units`` attributes.
 
     Returns
     -------
