@@ -189,8 +189,8 @@ def predicted_error(measure: str, value: float, *, law: str | None = None) -> fl
 
     Raises
     ------
-    KeyError
-        For an unknown ``measure`` or ``law``.
+    ValueError
+        Naming ``measure`` (not one of :data:`MEASURES`) or ``law`` (unknown).
 
     Examples
     --------
