@@ -113,7 +113,7 @@ def rms_slope(field, *, length=None) -> float:
 
 
 def psd(field, *, length=None, bins: int | None = None) -> xr.DataArray:
-    """Radially averaged PSD [length^4] in 2D (profile PSD [length^3] in 1D) against |q|.
+    """Radially averaged PSD [length^4] in 2D (profile PSD [length^3] in 1D) against ``|q|``.
 
     Bins are one ``q0 = 2 pi / L`` wide (or ``bins`` log-spaced bins) up to Nyquist.
 
