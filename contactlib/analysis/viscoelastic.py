@@ -93,7 +93,7 @@ def _body_modulus(grid: Grid, material, velocity) -> np.ndarray:
 
 def traction_power(grid: Grid, pressure: np.ndarray, tensor, sliding_velocity, *, friction: float = 0.0,
                    direction: float = 0.0) -> float:
-    """``sum_q (q . V) Im[t^H M t] / n^2`` [pressure length/time]: the power per unit area of the traction
+    """``sum_q (q.V) Im[t^H M t] / n^2`` [pressure length/time]: the power per unit area of the traction
     ``t = (mu p s, p)`` on a body whose (complex) Green's tensor is ``tensor`` (module docstring).
 
     With ``t`` along ``s`` the normal-tangential terms cancel in ``t^H M t``, leaving
