@@ -133,3 +133,16 @@ def test_examples_run(name, obj):
     test = parser.get_doctest(textwrap.dedent(inspect.getdoc(obj)), dict(vars(module)), name, module.__file__, 0)
     result = runner.run(test)
     assert result.failed == 0, f"{name}: {result.failed} of {result.attempted} examples failed"
+
+
+def test_help_names_every_entry_point_on_its_first_screen():
+    """``help(contactlib)``'s first screen (its docstring's first 24 lines) names every public callable, the
+    submodules' entry points and the errors a user meets."""
+    import contactlib
+
+    first_screen = "\n".join(contactlib.__doc__.splitlines()[:24])
+    names = [n for n in contactlib.__all__ if n != "__version__"]
+    names += ["two_scale.solve", "two_scale.solve_transient", "surfaces", "read", "InvariantError", "AccuracyWarning",
+              "contactlib solve", "snakemake"]
+    missing = [n for n in names if n not in first_screen]
+    assert not missing, f"not on help(contactlib)'s first screen: {missing}"

@@ -45,8 +45,13 @@ def page(module_name: str, title: str) -> str:
     classes = [n for n in names if inspect.isclass(getattr(module, n))]
     data = [n for n in names if n not in functions and n not in classes]
     heading = f"``{module_name}``: {title}"
-    lines = [heading, "=" * len(heading), "", f".. automodule:: {module_name}", "   :no-members:", "",
-             f".. currentmodule:: {module_name}", ""]
+    lines = [heading, "=" * len(heading), ""]
+    if module_name == "contactlib":  # its docstring is a plain-text map of the package (help()'s first screen)
+        lines += [".. module:: contactlib", "", ".. code-block:: text", ""]
+        lines += ["   " + line if line else "" for line in inspect.cleandoc(module.__doc__).splitlines()] + [""]
+    else:
+        lines += [f".. automodule:: {module_name}", "   :no-members:", ""]
+    lines += [f".. currentmodule:: {module_name}", ""]
     for label, group in (("Functions", functions), ("Classes", classes)):
         if group:
             lines += [label, "-" * len(label), "", ".. autosummary::", "   :toctree: generated", ""]

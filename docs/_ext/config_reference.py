@@ -59,7 +59,8 @@ def rows(node: dict, root: dict, path: str, required: set) -> list[str]:
     kind, rules = describe(node, root)
     default = f"`{node['default']}`" if "default" in node else ("required" if path.split(".")[-1] in required else "")
     if path:
-        out.append(f"| `{path}` | {cell(kind)} | {cell(default)} | {cell(rules)} | {cell(node.get('description', ''))} |")
+        description = cell(node.get("description", ""))
+        out.append(f"| `{path}` | {cell(kind)} | {cell(default)} | {cell(rules)} | {description} |")
     own_required = set(node.get("required", []))
     for name, child in node.get("properties", {}).items():
         out += rows(child, root, f"{path}.{name}" if path else name, own_required)
