@@ -1,13 +1,23 @@
 """contactlib: rough-surface contact mechanics with FFT boundary elements.
 
-The public API: :func:`solve` for normal contact (:func:`prepare` for a :class:`Problem` solved at many loads) on a
-half-space or :class:`Layer` of an :class:`Elastic` or :class:`Viscoelastic` material, with Coulomb friction and
-steady sliding, or with :class:`Adhesion` (and :func:`adhesion_curve` for loading-unloading paths);
-:mod:`contactlib.surfaces` to generate surfaces or read measured ones (``surfaces.read``);
-:mod:`contactlib.analysis` to measure them and their contact fields; :mod:`contactlib.accuracy` for the measured
-grid and tolerance rules (``solve(..., target_error=...)``); :mod:`contactlib.two_scale` for fields of separate
-spherical asperities (the seed's two-scale method: per-asperity forces with their interaction, then local FFT
-solves).
+Entry points (each returns a labelled xarray.Dataset; heights from contactlib.surfaces or an array with length=):
+  solve(heights, E=, nu=, mean_pressure= | penetration= | contact_area=)   normal contact on an elastic or
+      viscoelastic half-space or Layer; friction=, sliding_velocity= (steady sliding), adhesion=, target_error=
+  prepare(heights, ...) -> Problem: a scene validated once, solved at many loads
+  solve_tolerances(heights, tols, ...)          one solve, the answers at several tolerances
+  solve_speeds(heights, sliding_velocities, ...) steady sliding along a path of speeds, warm-started
+  predict_pressure(speeds, pressures, speed)    the warm start solve_speeds uses
+  solve_transient(heights, times=, material=, mean_pressure= | penetration=, path=)   viscoelastic time stepping
+  solve_reciprocating(heights, amplitude=, frequency=, mean_pressure=, material=)   sliding back and forth
+  adhesion_curve(heights, adhesion=, penetrations= | mean_pressures=)   loading-unloading path and pull-off
+  two_scale.solve(asperities, ...), two_scale.solve_transient(...)   fields of separate spherical asperities
+Bodies and interfaces: Elastic(E, nu), Viscoelastic(E0=, prony=, nu=), Layer(thickness, base=), Adhesion(work=, ...).
+Modules: surfaces (self_affine, wavy, paraboloid, spheres, resample, read), analysis, reference (closed forms),
+  accuracy (target_error rules), resolution (the resolution guard), invariants, two_scale; Grid.
+Errors and warnings: ConvergenceError (with .residual and .dataset), invariants.InvariantError, ResolutionWarning,
+  accuracy.AccuracyWarning, TimeStepWarning, TransientInterrupted; bad input raises ValueError naming the parameter.
+Command line: ``contactlib surface ...`` and ``contactlib solve ...``; the study workflow: ``snakemake --cores 2``.
+Documentation: ``sphinx-build -W -b html docs docs/_build/html`` (user guide per physics, tutorials, API).
 """
 
 from . import accuracy, analysis, reference, resolution, surfaces, two_scale

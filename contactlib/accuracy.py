@@ -93,6 +93,26 @@ def points_per_wavelength(target_error: float, *, quantity: str = "contact_area"
     ``quantity="contact_area"`` (the slowest to converge of the measured ones) or ``"pressure"``
     (relative L2 error of the pressure field). Uses the fits of :data:`ROUGH_FITS`.
 
+
+    Parameters
+    ----------
+    target_error : float
+        Relative error in (0, 1).
+    quantity : {"contact_area", "pressure"}
+        The error measured: contact area or the pressure field's relative L2 error.
+
+
+    Returns
+    -------
+    float
+        Grid points per shortest wavelength.
+
+
+    Raises
+    ------
+    ValueError
+        Naming ``quantity`` when it is not one of :data:`ROUGH_FITS`. Or ``target_error`` outside (0, 1).
+
     Examples
     --------
     >>> from contactlib import accuracy
@@ -112,6 +132,28 @@ def expected_error(points_per_wavelength, *, quantity: str = "contact_area", bou
     ``bound=False``: the fit against the continuum (the measured constant corrected for the 4x
     reference); ``bound=True``: with :data:`SAFETY`, the value :func:`points_per_wavelength` inverts.
 
+
+    Parameters
+    ----------
+    points_per_wavelength : float or array_like
+        Grid points per shortest wavelength.
+    quantity : {"contact_area", "pressure"}
+        The error measured: contact area or the pressure field's relative L2 error.
+    bound : bool
+        With the safety factor :data:`SAFETY`.
+
+
+    Returns
+    -------
+    float or ndarray
+        The expected relative error.
+
+
+    Raises
+    ------
+    ValueError
+        Naming ``quantity`` when it is not one of :data:`ROUGH_FITS`.
+
     Examples
     --------
     >>> from contactlib import accuracy
@@ -127,7 +169,29 @@ def expected_error(points_per_wavelength, *, quantity: str = "contact_area", bou
 
 def tolerance_for(target_error: float) -> float:
     """Solver tolerance whose share of the error stays below ``target_error / 10``:
-    ``target_error / (10 * TOLERANCE_GAIN)``, at most 1e-4 (the loosest tolerance the study measured)."""
+    ``target_error / (10 * TOLERANCE_GAIN)``, at most 1e-4 (the loosest tolerance the study measured).
+
+    Parameters
+    ----------
+    target_error : float
+        Relative error in (0, 1).
+
+    Returns
+    -------
+    float
+        The solver tolerance.
+
+    Raises
+    ------
+    ValueError
+        Naming ``target_error`` outside (0, 1).
+
+    Examples
+    --------
+    >>> from contactlib import accuracy
+    >>> accuracy.tolerance_for(0.01) < 1e-5
+    True
+    """
     _check_target(target_error)
     return float(min(1e-4, target_error / (10.0 * TOLERANCE_GAIN)))
 
@@ -150,7 +214,22 @@ def tolerance_for_scene(tol: float, heights: np.ndarray, penetration: float) -> 
     """:func:`tolerance_for`'s ``tol`` for a scene whose ``penetration`` [length] is below the rms of its ``heights``
     (the residual's scale, :func:`contactlib.solvers.state.height_scale`) over :data:`PENETRATION_RATIO`: ``tol`` times
     their ratio over it, no tighter than :data:`TIGHTEST_TOL`, so that the gaps the residual allows stay as small beside
-    the approach as in the scenes the rule was measured on; ``tol`` itself otherwise."""
+    the approach as in the scenes the rule was measured on; ``tol`` itself otherwise.
+
+    Parameters
+    ----------
+    tol : float
+        The rule's tolerance (:func:`tolerance_for`).
+    heights : ndarray
+        The scene's heights [length].
+    penetration : float
+        The solved approach [length].
+
+    Returns
+    -------
+    float
+        The tolerance for this scene, at most ``tol``.
+    """
     if not (math.isfinite(penetration) and penetration > 0):
         return tol
     ratio = height_scale(np.asarray(heights, dtype=float)) / penetration
@@ -161,7 +240,25 @@ def solve_on_for_scene(setup, state):
     """``contactlib.solve(..., target_error=)``'s rule measured its tol where the approach is about the rms height;
     far below it, solve ``setup`` (the validated problem of :func:`contactlib.solve`) on from ``state`` to
     :func:`tolerance_for_scene`'s tighter tol, recorded in its attrs; the state reached (its iterations both solves').
-    Where that solve does not converge, ``state`` stands, with an :class:`AccuracyWarning`."""
+    Where that solve does not converge, ``state`` stands, with an :class:`AccuracyWarning`.
+
+    Parameters
+    ----------
+    setup : contactlib.Problem
+        The validated problem of :func:`contactlib.solve`.
+    state : contactlib.solvers.ContactState
+        Its state at the rule's tolerance.
+
+    Returns
+    -------
+    contactlib.solvers.ContactState
+        The state at the tighter tolerance, or ``state``.
+
+    Warns
+    -----
+    AccuracyWarning
+        When the tighter tolerance is not reached.
+    """
     tol = setup.solver_args["tol"]
     tighter = tolerance_for_scene(tol, setup.values, state.penetration)
     if not (tighter < tol and state.converged):
@@ -198,6 +295,12 @@ def settings_for(target_error: float, *, quantity: str = "contact_area", q_cutof
     dict
         ``points_per_wavelength``, ``tol``, ``kernel`` and, with ``q_cutoff``, ``n``.
 
+
+    Raises
+    ------
+    ValueError
+        Naming ``target_error`` outside (0, 1), ``quantity`` or ``q_cutoff`` (not > 0).
+
     Examples
     --------
     >>> from contactlib import accuracy
@@ -220,6 +323,22 @@ def grid_points_per_wavelength(heights, *, length=None, floor: float = 1e-10) ->
     The shortest wavelength is ``2 pi / q_max``, with ``q_max`` the largest wavenumber carrying more
     than ``floor`` of the largest mode's power; it is divided by the coarser grid spacing. ``length``
     is the window size (default: a DataArray's coordinates, else 1). ``inf`` for a flat surface.
+
+
+    Parameters
+    ----------
+    heights : xarray.DataArray or ndarray
+        Periodic heights [length].
+    length : float or tuple, optional
+        Window size [length], required for a bare array.
+    floor : float
+        Power, relative to the largest mode's, below which a mode counts as absent.
+
+
+    Returns
+    -------
+    float
+        Grid points per shortest wavelength present.
 
     Examples
     --------
@@ -261,7 +380,29 @@ def grid_points_per_wavelength(heights, *, length=None, floor: float = 1e-10) ->
 
 def check_resolution(heights, target_error: float, *, length=None, quantity: str = "contact_area") -> float:
     """Warn (:class:`AccuracyWarning`) if ``heights`` has fewer points per shortest wavelength than
-    :func:`points_per_wavelength` asks for ``target_error``; returns the grid's points per wavelength."""
+    :func:`points_per_wavelength` asks for ``target_error``; returns the grid's points per wavelength.
+
+    Parameters
+    ----------
+    heights : xarray.DataArray or ndarray
+        Periodic heights [length].
+    target_error : float
+        Relative error in (0, 1).
+    length : float or tuple, optional
+        Window size [length], required for a bare array.
+    quantity : {"contact_area", "pressure"}
+        The error measured: contact area or the pressure field's relative L2 error.
+
+    Returns
+    -------
+    float
+        The grid's points per shortest wavelength.
+
+    Warns
+    -----
+    AccuracyWarning
+        When the grid is coarser than :func:`points_per_wavelength` asks.
+    """
     have = grid_points_per_wavelength(heights, length=length)
     need = points_per_wavelength(target_error, quantity=quantity)
     if have < need:
@@ -281,7 +422,20 @@ def _check_target(target_error) -> None:
 
 
 def fit_order(resolution, error) -> tuple[float, float]:
-    """Least-squares fit of ``error = constant * resolution**-order`` in log-log; NaN with < 3 points."""
+    """Least-squares fit of ``error = constant * resolution**-order`` in log-log; NaN with < 3 points.
+
+    Parameters
+    ----------
+    resolution : array_like
+        Resolutions (points per wavelength, radius, ...).
+    error : array_like
+        Relative errors at them.
+
+    Returns
+    -------
+    order, constant : float
+        The fitted ``p`` and ``C`` (NaN with fewer than 3 points).
+    """
     r, e = np.asarray(resolution, dtype=float), np.asarray(error, dtype=float)
     ok = np.isfinite(r) & np.isfinite(e) & (e > 0)
     if ok.sum() < 3:
@@ -292,7 +446,20 @@ def fit_order(resolution, error) -> tuple[float, float]:
 
 def convergence_orders(ds: xr.Dataset, *, floor: float = 1e-12) -> xr.Dataset:
     """Fitted order and constant of every error quantity against ``resolution``, per scene and kernel,
-    at the smallest tolerance of the dataset; errors below ``floor`` (round-off) are left out."""
+    at the smallest tolerance of the dataset; errors below ``floor`` (round-off) are left out.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A ``speed_vs_error`` dataset.
+    floor : float
+        Errors below it are left out.
+
+    Returns
+    -------
+    xarray.Dataset
+        ``order`` and ``constant`` per error quantity, scene and kernel.
+    """
     d = ds.where(ds.status == 0).sel(tol=ds.tol.min())
     quantities = [q for q in QUANTITIES if q in ds]
     order = np.full((ds.sizes["scene"], ds.sizes["kernel"], len(quantities)), np.nan)
@@ -315,7 +482,18 @@ def convergence_orders(ds: xr.Dataset, *, floor: float = 1e-12) -> xr.Dataset:
 
 def tolerance_gain(ds: xr.Dataset) -> float:
     """Largest change of any error quantity caused by the tolerance, per unit tolerance: the maximum
-    over points of ``|error(tol) - error(smallest tol)| / tol`` (same scene, grid and kernel)."""
+    over points of ``|error(tol) - error(smallest tol)| / tol`` (same scene, grid and kernel).
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A ``speed_vs_error`` dataset.
+
+    Returns
+    -------
+    float
+        The largest change of an error per unit tolerance.
+    """
     d = ds.where(ds.status == 0)
     quantities = [q for q in QUANTITIES if q in ds]
     gains = [(abs(d[q] - d[q].sel(tol=d.tol.min())) / d.tol).max() for q in quantities]
@@ -323,7 +501,20 @@ def tolerance_gain(ds: xr.Dataset) -> float:
 
 
 def pareto_front(cost, error) -> np.ndarray:
-    """Mask of the points no other point beats in both cost and error (NaN points are never on it)."""
+    """Mask of the points no other point beats in both cost and error (NaN points are never on it).
+
+    Parameters
+    ----------
+    cost : array_like
+        Cost of each point (e.g. wall time).
+    error : array_like
+        Error of each point.
+
+    Returns
+    -------
+    ndarray of bool
+        True on the Pareto front.
+    """
     c, e = np.asarray(cost, dtype=float).ravel(), np.asarray(error, dtype=float).ravel()
     mask = np.zeros(c.size, dtype=bool)
     best = math.inf
@@ -335,7 +526,22 @@ def pareto_front(cost, error) -> np.ndarray:
 
 def cheapest_settings(ds: xr.Dataset, targets, *, error: str = "max_error") -> list[dict]:
     """For each target relative error and scene, the setting with the smallest ``solve_time`` whose
-    ``error`` is within the target (``n``/``tol``/``kernel`` NaN/"" when no setting reaches it)."""
+    ``error`` is within the target (``n``/``tol``/``kernel`` NaN/"" when no setting reaches it).
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A ``speed_vs_error`` dataset.
+    targets : sequence of float
+        Target relative errors.
+    error : str
+        The error variable compared with the targets.
+
+    Returns
+    -------
+    list of dict
+        One row per target and scene: ``target``, ``scene``, ``kernel``, ``n``, ``tol``, ``solve_time``, ``error``.
+    """
     rows = []
     for target in targets:
         for scene in ds.scene.values:
@@ -354,7 +560,18 @@ def cheapest_settings(ds: xr.Dataset, targets, *, error: str = "max_error") -> l
 
 
 def markdown_table(rows: list[dict]) -> str:
-    """The rows of :func:`cheapest_settings` as a Markdown table."""
+    """The rows of :func:`cheapest_settings` as a Markdown table.
+
+    Parameters
+    ----------
+    rows : list of dict
+        The rows of :func:`cheapest_settings`.
+
+    Returns
+    -------
+    str
+        The Markdown table.
+    """
     lines = ["| target error | scene | kernel | N | tol | solve time [s] | error reached |",
              "|---|---|---|---|---|---|---|"]
     for r in rows:

@@ -97,6 +97,13 @@ def adhesion_curve(
         ``full_contact_pressure`` (the first fully closed state on loading),
         ``hysteresis_energy``. ``attrs['converged']`` is 0 where a step of a penetration-controlled path failed:
         the scalars are then NaN and ``attrs['convergence_message']`` names the steps.
+
+    Raises
+    ------
+    ValueError
+        Naming the parameter: ``adhesion`` not an Adhesion, not exactly one of ``penetrations`` and
+        ``mean_pressures``, fewer than 2 strictly increasing values, a penetration beyond full contact, a contact cut by
+        a non-periodic window's edge, or a state beyond the energy method's family of discs.
     """
     if adhesion is None or not hasattr(adhesion, "model"):
         raise ValueError(f"adhesion must be a contactlib.Adhesion, got {adhesion!r}")

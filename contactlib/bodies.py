@@ -85,6 +85,18 @@ class Layer:
     the back face is free and carries only the uniform pressure that balances the load (a thin one
     bends like a plate). Raises ``ValueError`` naming the parameter on a thickness that is not a
     finite number > 0 or an unknown base.
+
+    Parameters
+    ----------
+    thickness : float
+        Layer thickness [length], finite and > 0.
+    base : {"confined", "remote_pressure"}
+        The back face: bonded to a rigid base, or free under the balancing pressure.
+
+    Raises
+    ------
+    ValueError
+        Naming ``thickness`` or ``base``.
     """
 
     thickness: float

@@ -42,6 +42,7 @@ def solve(
     material: Elastic | Viscoelastic | None = None,
     sliding_velocity=None,
     adhesion=None,
+    contact_area: float | None = None,
 ) -> xr.Dataset:
     """Normal contact of a rigid rough surface on an elastic or viscoelastic half-space or layer, with
     Coulomb friction and steady sliding: ``prepare(heights, **scene).solve(mean_pressure=..., penetration=...,
@@ -134,12 +135,20 @@ def solve(
         ``mean_pressure`` (the applied traction, adhesive part included) and ``penetration`` may then be
         negative. Adds ``adhesive_pressure`` (the tensile part of ``pressure``) and ``interaction_area``;
         ``contact_area`` is the repulsive (closed) area (:mod:`contactlib.adhesive_contact`).
+    contact_area : float, optional
+        Solve to this contact area fraction in (0, 1) instead of a load: the state whose area is nearest it on the
+        grid (the area rises in whole elements), with the ``mean_pressure`` that gives it, found by bracketing the
+        load over solves of one scene (:mod:`contactlib.area_target`); ``attrs['target_contact_area']``. Not with
+        ``mean_pressure``, ``penetration`` or ``adhesion``.
 
     Returns
     -------
     xarray.Dataset
         ``pressure``, ``gap``, ``displacement`` fields and scalars ``contact_area``,
-        ``mean_pressure``, ``penetration``, ``iterations``, ``residual``; with friction, also the
+        ``mean_pressure``, ``penetration``, ``mean_gap``, ``iterations``, ``residual``; non-periodic, the load as
+        a force and the contact's size (:func:`contactlib.labels.window_variables`): ``normal_force``
+        (``mean_pressure`` times the window area) and ``contact_radius`` (``sqrt(A / pi)``), or on a profile
+        ``line_load`` and ``contact_half_width``; with friction, also the
         tangential traction and (periodic) the tangential displacement fields, and
         ``friction_coefficient_interlocking`` (``mu_a``, :func:`interlocking_friction`) and
         ``friction_coefficient`` (``mu_c + mu_a``); sliding (``sliding_velocity``), also those two and
@@ -147,6 +156,23 @@ def solve(
         (:mod:`contactlib.bodies`: the half-space where a layer is within tolerance of it, no
         coupling where it vanishes); ``attrs['full_contact']`` is 1, with a message, when the
         contact is complete (the load no longer changes the area).
+
+    Raises
+    ------
+    ValueError
+        Naming the argument: a bad value, a missing or doubled load, an option the scene does not support, or a
+        non-periodic contact cut by the window's edge.
+    ConvergenceError
+        When the solver does not reach ``tol`` in ``max_iter`` (or stalls), with its residual and partial state.
+    contactlib.invariants.InvariantError
+        When a converged state breaks a physical invariant (load balance, sign, complementarity, ...).
+
+    Warns
+    -----
+    ResolutionWarning
+        When the grid resolves the scene worse than the measured rule asks for 1 % (:mod:`contactlib.resolution`).
+    contactlib.accuracy.AccuracyWarning
+        With ``target_error``, when the grid is too coarse for it.
 
     Examples
     --------
@@ -160,7 +186,8 @@ def solve(
                       sliding_direction=sliding_direction, sliding_velocity=sliding_velocity, adhesion=adhesion,
                       periodic=periodic, length=length, tol=tol, max_iter=max_iter, kernel=kernel, method=method,
                       target_error=target_error, length_unit=length_unit, pressure_unit=pressure_unit)
-    return problem.solve(mean_pressure=mean_pressure, penetration=penetration, initial_pressure=initial_pressure)
+    return problem.solve(mean_pressure=mean_pressure, penetration=penetration, initial_pressure=initial_pressure,
+                         contact_area=contact_area)
 
 
 def solve_tolerances(
@@ -191,6 +218,29 @@ def solve_tolerances(
     Periodic displacement control (the dual solver) checks the primal residual, one convolution,
     at every iteration whose own residual is below the loosest tolerance, not only the tightest:
     its times there include those checks, which a separate looser solve partly skips.
+
+    Parameters
+    ----------
+    heights : xarray.DataArray or ndarray
+        As :func:`solve`.
+    tols : sequence of float
+        The tolerances, each in (0, 1).
+    E, nu : float
+        Young's modulus [pressure] and Poisson ratio.
+    mean_pressure, penetration : float
+        The load, as :func:`solve` (one of them).
+    periodic : bool, optional
+        As :func:`solve`.
+    max_iter : int
+        Iteration bound of the one solve.
+    kernel : {"spectral", "love"}
+        As :func:`solve`.
+    length : float or tuple, optional
+        Window size [length], required for bare-array heights.
+    initial_pressure : ndarray, optional
+        Warm start.
+    length_unit, pressure_unit : str
+        udunits strings written to the outputs' ``units`` attributes.
 
     Returns
     -------

@@ -74,7 +74,7 @@ class Grid:
         return qx[:, None], qy[None, :]
 
     def wavenumber(self) -> np.ndarray:
-        """Modulus |q| on the rfft layout [1/length]."""
+        """Modulus ``|q|`` on the rfft layout [1/length]."""
         q = self.wavevectors()
         return np.sqrt(sum(c**2 for c in q)) if self.dim == 2 else np.abs(q[0])
 

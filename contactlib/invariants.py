@@ -71,7 +71,19 @@ a penetration, tol 1e-6; 5 on a rough surface) where the memory left was negligi
 
 @dataclass(frozen=True)
 class Check:
-    """One invariant's verdict: ``violation`` (scale-free, NaN where the result held a NaN) within ``bound``."""
+    """One invariant's verdict: ``violation`` (scale-free, NaN where the result held a NaN) within ``bound``.
+
+    Parameters
+    ----------
+    invariant : str
+        Its name.
+    violation : float
+        The measured violation (scale-free; NaN where the result held a NaN).
+    bound : float
+        The bound it must stay within.
+    measure : str
+        How the violation is measured, for the message.
+    """
 
     invariant: str
     violation: float
@@ -86,6 +98,18 @@ class Check:
 
 class InvariantError(ConvergenceError):
     """A result broke an invariant: it is not returned as converged.
+
+
+    Parameters
+    ----------
+    message : str
+        The invariant, by how much it failed and the bound.
+    invariant : str
+        The invariant's name.
+    violation, bound : float
+        By how much it failed, and the bound it broke.
+    dataset : xarray.Dataset, optional
+        The labelled state.
 
     Attributes
     ----------
@@ -170,33 +194,108 @@ def _floor(bound: float) -> float:
 
 
 def check_load(mean_pressure: float, asked: float, *, tol: float, scale: float) -> Check:
-    """The mean pressure asked, to ``tol`` of ``scale`` (the asked load; an adhesive law's ``sigma_0 + |P|``)."""
+    """The mean pressure asked, to ``tol`` of ``scale`` (the asked load; an adhesive law's ``sigma_0 + |P|``).
+
+    Parameters
+    ----------
+    mean_pressure : float
+        The answer's mean pressure.
+    asked : float
+        The mean pressure asked.
+    tol : float
+        The tolerance the answer was solved to.
+    scale : float
+        The load scale.
+
+    Returns
+    -------
+    Check
+        The verdict.
+    """
     return Check("load", abs(mean_pressure - asked) / scale if scale > 0 else abs(mean_pressure - asked), _floor(tol),
                  f"|mean_pressure - asked| / {scale:.6g} (asked {asked:.6g}, returned {mean_pressure:.6g})")
 
 
 def check_penetration(penetration: float, asked: float, *, tol: float, height_rms: float) -> Check:
-    """The penetration asked, to ``tol`` rms heights."""
+    """The penetration asked, to ``tol`` rms heights.
+
+    Parameters
+    ----------
+    penetration : float
+        The answer's approach [length].
+    asked : float
+        The approach asked [length].
+    tol : float
+        The tolerance the answer was solved to.
+    height_rms : float
+        The heights' rms [length].
+
+    Returns
+    -------
+    Check
+        The verdict.
+    """
     return Check("penetration", abs(penetration - asked) / height_rms, _floor(tol),
                  f"|penetration - asked| / h_rms (asked {asked:.6g}, returned {penetration:.6g})")
 
 
 def check_sign(measures: FieldMeasures, *, tol: float) -> Check:
-    """``p >= 0`` without adhesion: a negative pressure within ``tol`` of the mean one (the solvers project exactly)."""
+    """``p >= 0`` without adhesion: a negative pressure within ``tol`` of the mean one (the solvers project exactly).
+
+    Parameters
+    ----------
+    measures : FieldMeasures
+        The fused pass's measures of the fields.
+    tol : float
+        The tolerance the answer was solved to.
+
+    Returns
+    -------
+    Check
+        The verdict.
+    """
     scale = measures.mean_pressure if measures.mean_pressure > 0 else 1.0
     return Check("sign", max(-measures.min_pressure, 0.0) / scale if math.isfinite(measures.min_pressure) else math.nan,
                  _floor(tol), "max(-pressure) / mean_pressure")
 
 
 def check_gap(min_gap: float, *, tol: float, height_rms: float) -> Check:
-    """No interpenetration: the most negative gap within :data:`POINTWISE_GAP` ``tol`` rms heights."""
+    """No interpenetration: the most negative gap within :data:`POINTWISE_GAP` ``tol`` rms heights.
+
+    Parameters
+    ----------
+    min_gap : float
+        The most negative gap [length].
+    tol : float
+        The tolerance the answer was solved to.
+    height_rms : float
+        The heights' rms [length].
+
+    Returns
+    -------
+    Check
+        The verdict.
+    """
     return Check("gap", max(-min_gap, 0.0) / height_rms if math.isfinite(min_gap) else math.nan,
                  _floor(POINTWISE_GAP * tol), "max(-gap) / h_rms")
 
 
 def check_complementarity(measures: FieldMeasures, *, tol: float) -> Check:
     """``p g = 0``: the residual's complementarity term ``mean(p |g|) / (mean(p) h_rms)`` within
-    :data:`RESIDUAL_MARGIN` ``tol``."""
+    :data:`RESIDUAL_MARGIN` ``tol``.
+
+    Parameters
+    ----------
+    measures : FieldMeasures
+        The fused pass's measures of the fields.
+    tol : float
+        The tolerance the answer was solved to.
+
+    Returns
+    -------
+    Check
+        The verdict.
+    """
     pbar = measures.mean_pressure
     value = measures.complementarity / (pbar * measures.height_rms) if pbar > 0 else 0.0
     return Check("complementarity", value if math.isfinite(pbar) else math.nan, _floor(RESIDUAL_MARGIN * tol),
@@ -205,7 +304,20 @@ def check_complementarity(measures: FieldMeasures, *, tol: float) -> Check:
 
 def check_gap_definition(measures: FieldMeasures, *, tol: float) -> Check:
     """The returned fields agree: ``gap = displacement + max(h) - h - penetration``, to ``tol`` rms heights (round-off
-    of the numbers in it at least)."""
+    of the numbers in it at least).
+
+    Parameters
+    ----------
+    measures : FieldMeasures
+        The fused pass's measures of the fields.
+    tol : float
+        The tolerance the answer was solved to.
+
+    Returns
+    -------
+    Check
+        The verdict.
+    """
     floor = 1e3 * np.finfo(float).eps * measures.round_off / measures.height_rms
     return Check("gap_definition", measures.gap_definition / measures.height_rms, _floor(max(tol, floor)),
                  "max |gap - (displacement + max(h) - h - penetration)| / h_rms")
@@ -213,7 +325,22 @@ def check_gap_definition(measures: FieldMeasures, *, tol: float) -> Check:
 
 def check_closed_gap(gap_on_closed: float, *, tol: float, height_rms: float) -> Check:
     """Adhesion: the closed (repulsive) set is in contact, ``|gap| ~ 0`` there, to :data:`POINTWISE_GAP` ``tol`` rms
-    heights (``gap_on_closed`` its largest magnitude, from the displacement)."""
+    heights (``gap_on_closed`` its largest magnitude, from the displacement).
+
+    Parameters
+    ----------
+    gap_on_closed : float
+        The largest gap magnitude on the closed set [length].
+    tol : float
+        The tolerance the answer was solved to.
+    height_rms : float
+        The heights' rms [length].
+
+    Returns
+    -------
+    Check
+        The verdict.
+    """
     return Check("closed_gap", gap_on_closed / height_rms, _floor(POINTWISE_GAP * tol), "max |gap| on the closed set / "
                  "h_rms")
 
@@ -222,14 +349,46 @@ def check_tension(excess: float, *, tol: float, scale: float) -> Check:
     """Adhesion: tension only where the law allows it. ``excess`` is the tension beyond the law's, summed over the
     points (a cohesive law: beyond its traction at the point's gap; JKR: any tension outside the closed set), and
     ``scale`` the tractions present; within :data:`RESIDUAL_MARGIN` ``tol`` (a cohesive law's ``tol`` is the
-    solve's over ``LAW_WEIGHT``, as its residual's law term weighs it: :mod:`contactlib.solvers.cohesive_newton`)."""
+    solve's over ``LAW_WEIGHT``, as its residual's law term weighs it: :mod:`contactlib.solvers.cohesive_newton`).
+
+    Parameters
+    ----------
+    excess : float
+        Tension beyond the law's, summed over the points.
+    tol : float
+        The tolerance the answer was solved to.
+    scale : float
+        The tractions present.
+
+    Returns
+    -------
+    Check
+        The verdict.
+    """
     return Check("tension", excess / scale if scale > 0 else excess, _floor(RESIDUAL_MARGIN * tol),
                  "sum of the tension beyond the law / sum |pressure|")
 
 
 def check_energy_balance(friction_power: float, dissipated_power: float, *, scale: float, tol: float) -> Check:
     """Steady sliding: the work of the friction force equals the power the body dissipates, within
-    :data:`ENERGY_BALANCE_FACTOR` ``tol`` of ``scale`` (``mean(p) |V| s_rms``)."""
+    :data:`ENERGY_BALANCE_FACTOR` ``tol`` of ``scale`` (``mean(p) |V| s_rms``).
+
+    Parameters
+    ----------
+    friction_power : float
+        ``mu_a p_m V`` [pressure length/time].
+    dissipated_power : float
+        The body's dissipation [pressure length/time].
+    scale : float
+        ``mean(p) |V| s_rms``.
+    tol : float
+        The tolerance the answer was solved to.
+
+    Returns
+    -------
+    Check
+        The verdict.
+    """
     return Check("energy_balance", abs(friction_power - dissipated_power) / scale if scale > 0 else 0.0,
                  _floor(ENERGY_BALANCE_FACTOR * tol),
                  "|mu_a mean_pressure |V| - dissipated_power| / (mean_pressure |V| rms_slope)")
@@ -238,7 +397,26 @@ def check_energy_balance(friction_power: float, dissipated_power: float, *, scal
 def check_relaxed_limit(end: float, relaxed: float, *, tol: float, scale: float, memory_left: float) -> Check:
     """A long hold under a constant load ends at the relaxed elastic solve: ``|end - relaxed| / scale`` within
     :data:`RELAXED_MARGIN` ``tol`` plus the memory left (``memory_left`` times ``|relaxed| / scale``; the creep still to
-    come is at most the relaxed response itself)."""
+    come is at most the relaxed response itself).
+
+    Parameters
+    ----------
+    end : float
+        The last step's load or approach.
+    relaxed : float
+        The relaxed elastic solve's.
+    tol : float
+        The tolerance the answer was solved to.
+    scale : float
+        Its scale.
+    memory_left : float
+        The fraction of the creep still to come (:func:`relaxed_hold`).
+
+    Returns
+    -------
+    Check
+        The verdict.
+    """
     return Check("relaxed_limit", abs(end - relaxed) / scale,
                  _floor(RELAXED_MARGIN * tol + memory_left * abs(relaxed) / scale),
                  f"|end - relaxed| / {scale:.6g} (end {end:.8g}, relaxed {relaxed:.8g})")
@@ -254,7 +432,22 @@ def failure_message(check: Check, where: str) -> str:
 def verify(checks: list[Check], dataset=None, *, where: str) -> None:
     """Record the invariants checked in ``dataset.attrs['invariants_checked']`` (names, comma-separated) and raise
     :class:`InvariantError` on the first that failed (``dataset``, if given, then says so:
-    ``attrs['converged'] = 0``, ``attrs['convergence_message']``)."""
+    ``attrs['converged'] = 0``, ``attrs['convergence_message']``).
+
+    Parameters
+    ----------
+    checks : list of Check
+        The verdicts.
+    dataset : xarray.Dataset, optional
+        The labelled answer, whose ``attrs`` record them.
+    where : str
+        The entry point's name, for the message.
+
+    Raises
+    ------
+    InvariantError
+        On the first invariant that failed, with the labelled state.
+    """
     if dataset is not None:
         names = list(dict.fromkeys(c.invariant for c in checks))
         dataset.attrs["invariants_checked"] = ", ".join(names)
@@ -272,7 +465,24 @@ def verify(checks: list[Check], dataset=None, *, where: str) -> None:
 def contact_checks(state, heights: np.ndarray, *, tol: float, mean_pressure: float | None = None,
                    penetration: float | None = None) -> list[Check]:
     """The invariants of a non-adhesive contact state on ``heights``: the load or penetration asked (either given),
-    ``p >= 0``, no interpenetration, complementarity and the gap's definition."""
+    ``p >= 0``, no interpenetration, complementarity and the gap's definition.
+
+    Parameters
+    ----------
+    state : contactlib.solvers.ContactState
+        The solved state.
+    heights : ndarray
+        The heights it was solved on [length].
+    tol : float
+        The tolerance the answer was solved to.
+    mean_pressure, penetration : float or None
+        The load or approach asked (one of them).
+
+    Returns
+    -------
+    list of Check
+        One verdict per invariant.
+    """
     m = field_measures(state.pressure, state.gap, state.displacement, heights, state.penetration)
     checks = []
     if mean_pressure is not None:
@@ -288,7 +498,26 @@ def adhesive_checks(state, heights: np.ndarray, adhesion, *, tol: float, mean_pr
     """The invariants of an adhesive state (:class:`contactlib.adhesive_contact.AdhesiveState`): the load or
     penetration asked, no interpenetration, the closed set's gap ~0 (from the displacement: the energy method zeroes
     its returned gap there) and tension only where the law allows it. The load's scale is the cohesive residual's,
-    ``sigma_0 + |P|`` (JKR: ``|P| + mean|p|``)."""
+    ``sigma_0 + |P|`` (JKR: ``|P| + mean|p|``).
+
+    Parameters
+    ----------
+    state : contactlib.solvers.ContactState
+        The solved state.
+    heights : ndarray
+        The heights it was solved on [length].
+    adhesion : contactlib.Adhesion
+        The interface.
+    tol : float
+        The tolerance the answer was solved to.
+    mean_pressure, penetration : float or None
+        The load or approach asked (one of them).
+
+    Returns
+    -------
+    list of Check
+        One verdict per invariant.
+    """
     m = field_measures(state.pressure, state.gap, state.displacement, heights, state.penetration)
     p = state.pressure
     closed = state.in_contact
@@ -333,7 +562,28 @@ def rms_slope_along(heights: np.ndarray, lengths, direction: float) -> float:
 def sliding_checks(ds, heights: np.ndarray, *, lengths, velocity, direction: float, tol: float) -> list[Check]:
     """Steady frictionless sliding: the energy balance (:func:`check_energy_balance`), with the measured balance put
     in ``ds.attrs``: ``energy_balance`` (relative to the dissipated power), ``energy_balance_scaled`` (the checked
-    measure) and ``energy_balance_bound``."""
+    measure) and ``energy_balance_bound``.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        The labelled answer (its ``attrs`` get the balance).
+    heights : ndarray
+        The heights [length].
+    lengths : sequence of float
+        Window size per axis [length].
+    velocity : sequence of float
+        Sliding velocity [length/time].
+    direction : float
+        Sliding direction [rad].
+    tol : float
+        The tolerance the answer was solved to.
+
+    Returns
+    -------
+    list of Check
+        One verdict per invariant.
+    """
     speed = math.hypot(*velocity)  # no overflow at 1e200
     pbar = float(ds["mean_pressure"])
     friction_power = float(ds["friction_coefficient_interlocking"]) * pbar * speed
@@ -357,7 +607,26 @@ def relaxed_hold(times: np.ndarray, loads: np.ndarray, positions: np.ndarray, ma
     The fraction is the time stepping's own, step by step: at a fixed displacement a branch decays by ``a =
     exp(-dt / tau)`` exactly; under a constant load the creep of a standard linear solid decays by ``(a + beta) / (1
     + beta)`` (``beta = (E_eff - E0) / E0``, the step's effective modulus), which tends to ``beta`` rather than 0 for
-    long steps: log-spaced steps leave more memory than ``exp(-hold / lambda)``. Several branches take the slowest."""
+    long steps: log-spaced steps leave more memory than ``exp(-hold / lambda)``. Several branches take the slowest.
+
+    Parameters
+    ----------
+    times : ndarray
+        The instants [time].
+    loads : ndarray
+        The load or approach at each.
+    positions : ndarray
+        The rigid surface's position at each [length].
+    material : contactlib.Viscoelastic or contactlib.Elastic
+        The body.
+    control : {"mean_pressure", "penetration"}
+        What ``loads`` holds.
+
+    Returns
+    -------
+    float or None
+        The memory left, None where the series does not end in a hold.
+    """
     branches = getattr(material, "prony", ())
     if not branches:
         return None
@@ -379,7 +648,18 @@ def relaxed_hold(times: np.ndarray, loads: np.ndarray, positions: np.ndarray, ma
 
 
 def step_invariants(control: str) -> str:
-    """``attrs['invariants_checked']`` of a time series whose steps :func:`contact_checks` checks."""
+    """``attrs['invariants_checked']`` of a time series whose steps :func:`contact_checks` checks.
+
+    Parameters
+    ----------
+    control : {"mean_pressure", "penetration"}
+        The series' control.
+
+    Returns
+    -------
+    str
+        The names, comma-separated.
+    """
     return f"{'load' if control == 'mean_pressure' else 'penetration'}, sign, gap, complementarity, gap_definition " \
            "(every step)"
 
@@ -389,7 +669,26 @@ def verify_two_scale(ds, heights, *, scale: str, tol: float, macro_tol: float, m
     for ``scale="macro"``, whose Newton residual bounds it, else to ``tol``, the outer tolerance: the sweeps hold
     the total force), the penetration asked, every asperity force ``>= 0`` and, with the two-scale fields, ``p >=
     0``, no interpenetration and complementarity as :func:`contact_checks` (the macro scale's fields are Hertz's
-    pressures, not a contact solution: not checked)."""
+    pressures, not a contact solution: not checked).
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        The labelled answer.
+    heights : xarray.DataArray or None
+        The heights, for the fields' checks.
+    scale : {"two-scale", "macro"}
+        The method that ran.
+    tol, macro_tol : float
+        Its tolerances.
+    mean_pressure, penetration : float or None
+        The load or approach asked (one of them).
+
+    Raises
+    ------
+    InvariantError
+        On the first invariant that failed, with the labelled state.
+    """
     load_tol = macro_tol if scale == "macro" else tol
     checks = []
     if mean_pressure is not None:
@@ -413,7 +712,26 @@ def verify_two_scale_series(ds, loads: np.ndarray, *, control: str, scale: str, 
     """:func:`contactlib.two_scale.solve_transient`'s invariants over its steps: under load control each step's mean
     pressure is the one asked (to ``macro_tol`` for ``scale="macro"``, else ``tol``, as :func:`verify_two_scale`);
     two-scale, every asperity force ``>= 0`` (the macro scale's per-asperity memory may pull a receding contact,
-    which it warns of instead)."""
+    which it warns of instead).
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        The labelled time series.
+    loads : ndarray
+        The load or approach asked at each step.
+    control : {"mean_pressure", "penetration"}
+        What ``loads`` holds.
+    scale : {"two-scale", "macro"}
+        The method that ran.
+    tol, macro_tol : float
+        Its tolerances.
+
+    Raises
+    ------
+    InvariantError
+        On the first invariant that failed, with the labelled state.
+    """
     load_tol = macro_tol if scale == "macro" else tol
     checks = []
     if control == "mean_pressure":
@@ -439,7 +757,23 @@ def verify_path(ds, path: np.ndarray, heights: np.ndarray, adhesion, *, load_con
     (or penetration) asked, to ``tol`` of the cohesive residual's load scale ``sigma_0 + |P|`` (JKR: ``|P|`` plus the
     path's largest ``|P|``) or of the rms height. A state that misses it is not returned as converged, as a failed
     step is not (the path never raises): ``converged`` 0 at that step, its scalars NaN, the path's scalars NaN,
-    ``attrs['converged'] = 0`` and ``attrs['invariant_failures']`` naming the steps and by how much."""
+    ``attrs['converged'] = 0`` and ``attrs['invariant_failures']`` naming the steps and by how much.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        The labelled path.
+    path : ndarray
+        The loads or approaches asked.
+    heights : ndarray
+        The heights [length].
+    adhesion : contactlib.Adhesion
+        The interface.
+    load_control : bool
+        Whether ``path`` holds loads.
+    tol : float
+        The tolerance the answer was solved to.
+    """
     name = "mean_pressure" if load_control else "penetration"
     asked = np.asarray(path, dtype=float)
     returned = ds[name].values.copy()
@@ -475,7 +809,26 @@ def verify_path(ds, path: np.ndarray, heights: np.ndarray, adhesion, *, load_con
 def adhesive_state_holds(state, heights: np.ndarray, adhesion, *, tol: float, mean_pressure: float | None,
                          penetration: float | None) -> bool:
     """Whether a converged adhesive state of a path meets :func:`adhesive_checks`: one that does not is taken for an
-    unconverged attempt (:func:`contactlib.adhesion_curve` tries its next start)."""
+    unconverged attempt (:func:`contactlib.adhesion_curve` tries its next start).
+
+    Parameters
+    ----------
+    state : contactlib.solvers.ContactState
+        The solved state.
+    heights : ndarray
+        The heights it was solved on [length].
+    adhesion : contactlib.Adhesion
+        The interface.
+    tol : float
+        The tolerance the answer was solved to.
+    mean_pressure, penetration : float or None
+        The load or approach asked (one of them).
+
+    Returns
+    -------
+    bool
+        True where every check holds.
+    """
     return all(c.passed for c in adhesive_checks(state, heights, adhesion, tol=tol, mean_pressure=mean_pressure,
                                                  penetration=penetration))
 
@@ -485,7 +838,22 @@ def _height_rms(heights: np.ndarray) -> float:
 
 def with_dataset(err: ConvergenceError, message: str, dataset) -> ConvergenceError:
     """``err`` raised again by a time series with its steps so far (``dataset``): an :class:`InvariantError` stays
-    one, and its ``dataset`` says so as :func:`verify`'s does (``attrs['converged'] = 0``, the message)."""
+    one, and its ``dataset`` says so as :func:`verify`'s does (``attrs['converged'] = 0``, the message).
+
+    Parameters
+    ----------
+    err : ConvergenceError
+        The error raised by a step.
+    message : str
+        The series' status.
+    dataset : xarray.Dataset
+        The steps so far.
+
+    Returns
+    -------
+    ConvergenceError
+        An error of ``err``'s class carrying ``dataset``.
+    """
     if isinstance(err, InvariantError):
         dataset.attrs.update(converged=0, convergence_message=message, invariant_failed=err.invariant)
         return InvariantError(message, invariant=err.invariant, violation=err.violation, bound=err.bound,
@@ -494,9 +862,24 @@ def with_dataset(err: ConvergenceError, message: str, dataset) -> ConvergenceErr
 
 
 def verify_solve(setup, state, ds) -> None:
-    """:func:`contactlib.solve`'s invariants of a converged ``state`` of ``setup`` (a :class:`contactlib.Problem` with
-    its load), labelled as ``ds`` (its ``attrs['tol']`` the tolerance reached): :func:`contact_checks` or, with
-    adhesion, :func:`adhesive_checks`; steady frictionless sliding adds the energy balance."""
+    """:func:`contactlib.solve`'s invariants of a converged ``state`` of ``setup`` (a :class:`contactlib.Problem`
+    with its load), labelled as ``ds`` (its ``attrs['tol']`` the tolerance reached): :func:`contact_checks` or, with
+    adhesion, :func:`adhesive_checks`; steady frictionless sliding adds the energy balance.
+
+    Parameters
+    ----------
+    setup : contactlib.Problem
+        The validated problem, with its load.
+    state : contactlib.solvers.ContactState
+        Its converged state.
+    ds : xarray.Dataset
+        The labelled answer.
+
+    Raises
+    ------
+    InvariantError
+        On the first invariant that failed, with the labelled state.
+    """
     args, tol = setup.solver_args, float(ds.attrs["tol"])
     asked = {"mean_pressure": args["mean_pressure"], "penetration": args["penetration"]}
     if setup.adhesion is not None:

@@ -74,7 +74,16 @@ VARIABLES: dict[str, dict[str, str]] = {
     "force": {"units": "{pressure} {length}2", "long_name": "normal contact force on the asperity"},
     "macro_force": {"units": "{pressure} {length}2",
                     "long_name": "normal contact force on the asperity from the macro step (Hertz + point-load interaction)"},
-    "contact_radius": {"units": "{length}", "long_name": "contact radius of the asperity (area-equivalent)"},
+    "contact_radius": {"units": "{length}",
+                       "long_name": "area-equivalent contact radius sqrt(A / pi) (of the asperity, or of the window's "
+                                    "contact)"},
+    "mean_gap": {"units": "{length}", "long_name": "mean interfacial gap over the window"},
+    "normal_force": {"units": "{pressure} {length}2",
+                     "long_name": "normal force on the window (mean pressure times the window area)"},
+    "line_load": {"units": "{pressure} {length}",
+                  "long_name": "normal force per unit width on the profile (mean pressure times the window length)"},
+    "contact_half_width": {"units": "{length}", "long_name": "half the contact length of the profile"},
+    "target_contact_area": {"units": "1", "long_name": "contact area fraction asked of the solve"},
     "local_penetration": {"units": "{length}",
                           "long_name": "local penetration of the asperity from the macro step (negative: separated)"},
 }
@@ -84,6 +93,28 @@ def attrs_for(name: str, *, length: str = "m", pressure: str = "Pa") -> dict[str
     """CF attributes of ``name`` with the declared units substituted."""
     entry = VARIABLES[name]
     return {"units": entry["units"].format(length=length, pressure=pressure), "long_name": entry["long_name"]}
+
+
+def window_variables(state, lengths, *, periodic: bool, length_unit: str = "m", pressure_unit: str = "Pa") -> dict:
+    """The scalars of a solved window besides the solver's own: ``mean_gap``; for an isolated (non-periodic)
+    footprint its load as a force and its size, ``normal_force`` and ``contact_radius`` (``sqrt(A / pi)``, ``A``
+    the contact area) on a surface, ``line_load`` and ``contact_half_width`` (half the contact length) on a profile
+    (name: variable). A periodic window's force and contact size depend on the window, so they are not given."""
+    def variable(name, value):
+        return xr.Variable((), float(value), attrs_for(name, length=length_unit, pressure=pressure_unit))
+
+    out = {"mean_gap": variable("mean_gap", np.mean(state.gap))}
+    if periodic:
+        return out
+    window_area = float(np.prod(lengths))
+    contact = float(np.count_nonzero(state.pressure > 0)) / state.pressure.size * window_area
+    if len(lengths) == 1:
+        out["line_load"] = variable("line_load", state.mean_pressure * window_area)
+        out["contact_half_width"] = variable("contact_half_width", contact / 2.0)
+    else:
+        out["normal_force"] = variable("normal_force", state.mean_pressure * window_area)
+        out["contact_radius"] = variable("contact_radius", np.sqrt(contact / np.pi))
+    return out
 
 
 def to_dataset(state, *, dims, coords, length_unit="m", pressure_unit="Pa", extra=None) -> xr.Dataset:

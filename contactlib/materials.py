@@ -44,6 +44,24 @@ class Elastic:
     """A linearly elastic body: Young's modulus ``E`` [pressure], Poisson ratio ``nu``.
 
     Raises ``ValueError`` naming the parameter outside ``E > 0``, ``-1 < nu <= 0.5``.
+
+    Parameters
+    ----------
+    E : float
+        Young's modulus [pressure], > 0.
+    nu : float
+        Poisson ratio, ``-1 < nu <= 0.5``.
+
+    Raises
+    ------
+    ValueError
+        Naming ``E`` or ``nu`` out of range.
+
+    Examples
+    --------
+    >>> import contactlib
+    >>> contactlib.Elastic(E=2e11, nu=0.3)
+    Elastic(E=200000000000.0, nu=0.3)
     """
 
     E: float

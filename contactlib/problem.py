@@ -21,14 +21,14 @@ import time
 import numpy as np
 import xarray as xr
 
-from . import accuracy, adhesive_choice, adhesive_contact, fft, resolution
+from . import accuracy, adhesive_choice, adhesive_contact, area_target, fft, resolution
 from ._version import __version__
 from .analysis.friction import interlocking_friction
 from .analysis.viscoelastic import traction_power
 from .bodies import BodyModel, KernelCache, body_model
 from .inputs import EDGE_TENSION, check_below_full_contact, check_loads, edge_tension, real_values, round_off_floor, \
     touches_edge
-from .labels import attrs_for, to_dataset
+from .labels import attrs_for, to_dataset, window_variables
 from .materials import Viscoelastic, contact_modulus
 from .scene import Scene, scene_of
 from .solvers import ContactState, nonsymmetric_choice, symmetric_choice
@@ -38,6 +38,15 @@ from .solvers.recycle import RecycledSpace
 class ConvergenceError(RuntimeError):
     """A solve did not reach its tolerance within ``max_iter``, or stalled before it (the CG
     residual stopped falling, e.g. at the round-off floor of a tolerance set too tight).
+
+    Parameters
+    ----------
+    message : str
+        What did not converge, with the residual and the tolerance.
+    residual : float
+        The residual reached.
+    dataset : xarray.Dataset
+        The partial state.
 
     Attributes
     ----------
@@ -67,6 +76,21 @@ class Problem:
     :attr:`values` / :attr:`heights` (the heights on the grid), :attr:`grid`, :attr:`attrs` (what labels the
     answer), :attr:`solver_args` (``tol``, ``max_iter`` and, with a load, ``mean_pressure``, ``penetration``,
     ``initial_pressure``: the solvers' keyword arguments), :attr:`kernels` and :attr:`recycled` (the caches).
+
+    Parameters
+    ----------
+    scene : contactlib.scene.Scene
+        The validated inputs.
+    body : contactlib.bodies.BodyModel
+        The body's operators.
+    attrs : dict
+        What labels the answer.
+    solver_args : dict
+        The solvers' keyword arguments (with a load once :meth:`loaded`).
+    kernels : contactlib.bodies.KernelCache
+        The Green's tensor cache, shared with the problems :meth:`at_speed` makes.
+    recycled : contactlib.solvers.recycle.RecycledSpace, optional
+        Krylov vectors carried between GMRES set solves (:meth:`recycling`).
     """
 
     scene: Scene
@@ -95,15 +119,41 @@ class Problem:
         return self.body.compliance
 
     def solve(self, *, mean_pressure: float | None = None, penetration: float | None = None,
-              initial_pressure=None) -> xr.Dataset:
+              initial_pressure=None, contact_area: float | None = None) -> xr.Dataset:
         """The contact at one load: ``mean_pressure`` (load control) or ``penetration`` (displacement control), as
-        :func:`contactlib.solve` documents them, from ``initial_pressure`` (a warm start, ``method="cg"``).
+        :func:`contactlib.solve` documents them, from ``initial_pressure`` (a warm start, ``method="cg"``); or at
+        the load whose contact area is ``contact_area`` (:mod:`contactlib.area_target`).
 
-        Returns the Dataset :func:`contactlib.solve` returns; raises as it does (:class:`ConvergenceError`, a
-        ``ValueError`` naming a bad load). The problem itself is unchanged: solve it again at another load."""
-        loaded = self.loaded(mean_pressure=mean_pressure, penetration=penetration, initial_pressure=initial_pressure)
+        Parameters
+        ----------
+        mean_pressure, penetration : float, optional
+            The load (one of them, or ``contact_area``).
+        initial_pressure : ndarray, optional
+            Warm start.
+        contact_area : float, optional
+            Target contact area fraction in (0, 1), instead of a load.
+
+        Returns
+        -------
+        xarray.Dataset
+            What :func:`contactlib.solve` returns. The problem itself is unchanged: solve it again at another load.
+
+        Raises
+        ------
+        ValueError
+            Naming a bad load or warm start.
+        ConvergenceError
+            As :func:`contactlib.solve`.
+        """
         start = time.perf_counter()
-        state = loaded.run()
+        if contact_area is None:
+            loaded = self.loaded(mean_pressure=mean_pressure, penetration=penetration,
+                                 initial_pressure=initial_pressure)
+            state = loaded.run()
+        else:
+            area_target.check(contact_area, mean_pressure=mean_pressure, penetration=penetration,
+                              adhesion=self.adhesion)
+            loaded, state = area_target.search(self, contact_area)
         if self.scene.target_error is not None and self.adhesion is None:
             state = accuracy.solve_on_for_scene(loaded, state)
         wall = time.perf_counter() - start
@@ -185,6 +235,8 @@ class Problem:
             extra["outer_iterations"] = xr.Variable((), state.outer_iterations, attrs_for("outer_iterations"))
         if self.attrs["friction"] > 0 or "sliding_velocity" in self.attrs:
             extra.update(self._friction_variables(state, length_unit, pressure_unit))
+        extra.update(window_variables(state, self.grid.lengths, periodic=self.operator.periodic,
+                                      length_unit=length_unit, pressure_unit=pressure_unit))
         ds = to_dataset(state, dims=self.dims, coords=self.coords, length_unit=length_unit,
                         pressure_unit=pressure_unit, extra=extra)
         ds.attrs.update({"solver": state.solver, **self.attrs, "converged": int(state.converged), "wall_time": wall,
@@ -294,6 +346,51 @@ def prepare(heights, *, E: float | None = None, nu: float | None = None, materia
     ``sliding_velocity``, ``adhesion``), the window (``periodic``, ``length``) and the options (``tol``,
     ``max_iter``, ``kernel``, ``method``, ``target_error``, ``length_unit``, ``pressure_unit``). A bad one is refused
     here with the ``ValueError`` :func:`contactlib.solve` raises for it.
+
+    Parameters
+    ----------
+    heights : xarray.DataArray or ndarray
+        Rigid surface heights [length], as :func:`contactlib.solve`.
+    E, nu : float
+        Young's modulus [pressure] and Poisson ratio (or ``material``).
+    material : contactlib.Elastic or contactlib.Viscoelastic, optional
+        The body's material.
+    layer : contactlib.Layer, optional
+        A finite layer instead of the half-space.
+    friction : float
+        Coulomb coefficient ``mu_c >= 0``.
+    sliding_direction : float, optional
+        Direction of the rigid surface's motion [rad].
+    sliding_velocity : float or sequence of float, optional
+        Steady sliding velocity [length/time], one component per axis of the heights.
+    adhesion : contactlib.Adhesion, optional
+        An adhesive interface.
+    periodic : bool, optional
+        Periodic window or an isolated footprint.
+    length : float or tuple, optional
+        Window size [length], required for bare-array heights.
+    tol : float, optional
+        Target of the scale-free residual.
+    max_iter : int
+        Iteration bound of a solve.
+    kernel : {"spectral", "love"}
+        The half-space's kernel.
+    method : {"cg", "active-set"}
+        The symmetric solver.
+    target_error : float, optional
+        Relative error wanted on the contact area (picks ``tol``).
+    length_unit, pressure_unit : str
+        udunits strings written to the outputs' ``units`` attributes.
+
+    Returns
+    -------
+    Problem
+        The validated scene with its body's operators and caches.
+
+    Raises
+    ------
+    ValueError
+        Naming the argument, as :func:`contactlib.solve` does.
 
     Examples
     --------

@@ -89,6 +89,44 @@ def solve_reciprocating(
     profile dissipated 41 % too little (the profile: 256 points, amplitude 0.3 of the window, standard linear
     solid E_inf/E0 = 10, f tau = 1e-3).
 
+
+    Parameters
+    ----------
+    heights : xarray.DataArray or ndarray
+        Rigid surface heights [length], as :func:`contactlib.solve` takes them.
+    amplitude : float
+        Amplitude ``A`` of the motion [length], > 0.
+    frequency : float
+        Frequency ``f`` [1/time], > 0.
+    mean_pressure : float
+        The constant load [pressure].
+    material : contactlib.Viscoelastic or contactlib.Elastic, optional
+        The body (or ``E``, ``nu``).
+    E, nu : float, optional
+        The elastic shorthand.
+    direction : float
+        Direction of the motion [rad]; a profile: 0 or pi.
+    steps_per_cycle : int, optional
+        Time steps per cycle, a multiple of 4; default by the slide a step (above).
+    max_cycles, min_cycles : int
+        Bounds on the cycles run, ``2 <= min_cycles <= max_cycles``.
+    cycle_tol : float
+        Settling tolerance on the change between cycles.
+    accelerate : bool
+        Aitken's extrapolation of the memory every second cycle.
+    layer : contactlib.Layer, optional
+        A finite layer, as in :func:`contactlib.solve`.
+    periodic : bool, optional
+        As in :func:`contactlib.solve`.
+    tol, max_iter : float, int
+        Each step's contact tolerance (at most a tenth of ``cycle_tol``) and iteration bound.
+    length : float or tuple, optional
+        Window size [length], required for bare-array heights.
+    progress : callable, optional
+        Called after each step, as in :func:`solve_transient`.
+    length_unit, pressure_unit, time_unit : str
+        udunits strings written to the output's ``units`` attributes.
+
     Returns
     -------
     xarray.Dataset
@@ -103,6 +141,22 @@ def solve_reciprocating(
         at 1.0, -0.003 at 0.47 on the profile above; a settled cycle beyond :data:`ENERGY_BALANCE` warns; NaN
         where the absolute work is below the steps' error, as on an elastic body); ``attrs['status']``
         ``"settled"`` or not, ``attrs['slide_per_step']`` the largest slide of a step [grid spacings].
+
+    Raises
+    ------
+    ValueError
+        Naming the parameter: a bad value, ``tol`` above a tenth of ``cycle_tol``, ``direction`` other than 0 or pi on
+        a profile, ``min_cycles`` above ``max_cycles``.
+    ConvergenceError
+        A step did not converge: ``err.dataset`` holds the run so far.
+    TransientInterrupted
+        Ctrl-C: ``err.dataset`` holds the cycles done.
+
+    Warns
+    -----
+    TimeStepWarning
+        When a step slides farther than one grid spacing, or a settled cycle's energy balance exceeds
+        :data:`ENERGY_BALANCE`.
     """
     amplitude = number("amplitude", amplitude, lower=0.0, lower_open=True)
     frequency = number("frequency", frequency, lower=0.0, lower_open=True)

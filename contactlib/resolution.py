@@ -76,7 +76,26 @@ MEASURES = ("points_per_wavelength", "points_per_contact_radius", "process_zone_
 
 class ResolutionWarning(AccuracyWarning):
     """The grid is coarser than the measured error rules ask for :data:`THRESHOLD` (1 %) in the contact area or
-    pressure. ``measure``, ``value`` and ``predicted_error`` carry the numbers of the message."""
+    pressure. ``measure``, ``value`` and ``predicted_error`` carry the numbers of the message.
+
+    Parameters
+    ----------
+    message : str
+        What was measured, the predicted error and what to change.
+    resolution : Resolution, optional
+        The measure behind the message.
+
+    Attributes
+    ----------
+    resolution : Resolution or None
+        The measure behind the message.
+    measure : str or None
+        Its name.
+    value : float
+        Its value (NaN without a measure).
+    predicted_error : float
+        The predicted relative error (NaN without a measure).
+    """
 
     def __init__(self, message: str, resolution: "Resolution | None" = None):
         super().__init__(message)
@@ -90,7 +109,21 @@ class ResolutionWarning(AccuracyWarning):
 class Resolution:
     """One measured resolution: ``measure`` (one of :data:`MEASURES`), its ``value`` and the rules'
     ``predicted_error`` (relative, the larger of contact area and pressure), the grid side ``n`` it was
-    measured on and the cohesive ``law`` (for the advice)."""
+    measured on and the cohesive ``law`` (for the advice).
+
+    Attributes
+    ----------
+    measure : str
+        One of :data:`MEASURES`.
+    value : float
+        The measured resolution.
+    predicted_error : float
+        The rule's predicted relative error.
+    n : int
+        The grid side it was measured on.
+    law : str, optional
+        A cohesive law's name (:data:`COHESIVE_FITS`) for ``process_zone_elements``.
+    """
 
     measure: str
     value: float
@@ -137,6 +170,28 @@ def _fits(measure: str, law: str | None = None) -> dict:
 def predicted_error(measure: str, value: float, *, law: str | None = None) -> float:
     """Relative error (the larger of contact area and pressure) the rule of ``measure`` predicts at ``value``.
 
+
+    Parameters
+    ----------
+    measure : str
+        One of :data:`MEASURES`.
+    value : float
+        The measured resolution, > 0.
+    law : str, optional
+        A cohesive law's name (:data:`COHESIVE_FITS`) for ``process_zone_elements``.
+
+
+    Returns
+    -------
+    float
+        The predicted relative error.
+
+
+    Raises
+    ------
+    ValueError
+        Naming ``measure`` (not one of :data:`MEASURES`) or ``law`` (unknown).
+
     Examples
     --------
     >>> from contactlib import resolution
@@ -148,7 +203,22 @@ def predicted_error(measure: str, value: float, *, law: str | None = None) -> fl
 
 def needed_resolution(measure: str, target: float = THRESHOLD, *, law: str | None = None) -> float:
     """The value of ``measure`` at which its rule predicts ``target`` (default :data:`THRESHOLD`); ``law``: a
-    cohesive law's name (:data:`COHESIVE_FITS`)."""
+    cohesive law's name (:data:`COHESIVE_FITS`).
+
+    Parameters
+    ----------
+    measure : str
+        One of :data:`MEASURES`.
+    target : float
+        The relative error asked.
+    law : str, optional
+        A cohesive law's name (:data:`COHESIVE_FITS`) for ``process_zone_elements``.
+
+    Returns
+    -------
+    float
+        The resolution the rule asks.
+    """
     return float(_needed(_fits(measure, law), target))
 
 
@@ -163,6 +233,20 @@ def points_per_contact_radius(contact: np.ndarray, *, periodic: bool = False) ->
     in 2D (a staircase around a disc is 4 / pi times its perimeter), so a disc of radius ``a`` spacings reads
     about ``a`` (2.6 at 3, 19.5 at 20: the staircase's corners); 1D: the half-width of the patches. ``inf`` in full
     contact, NaN with no contact. :data:`CONTACT_FITS` is measured against this measure.
+
+
+    Parameters
+    ----------
+    contact : ndarray of bool
+        The closed nodes, 1D or 2D.
+    periodic : bool
+        Whether the array wraps.
+
+
+    Returns
+    -------
+    float
+        ``2 A / P`` in grid spacings (inf for full contact, 0 for none).
 
     Examples
     --------
@@ -188,13 +272,39 @@ def points_per_contact_radius(contact: np.ndarray, *, periodic: bool = False) ->
 
 
 def of_spectrum(values: np.ndarray, lengths) -> Resolution:
-    """The periodic surface's points per shortest wavelength and the rough rule's prediction."""
+    """The periodic surface's points per shortest wavelength and the rough rule's prediction.
+
+    Parameters
+    ----------
+    values : ndarray
+        Periodic heights [length].
+    lengths : sequence of float
+        Window size per axis [length].
+
+    Returns
+    -------
+    Resolution
+        Points per shortest wavelength and its prediction.
+    """
     ppw = grid_points_per_wavelength(values, length=list(lengths))
     return Resolution("points_per_wavelength", ppw, predicted_error("points_per_wavelength", ppw), max(values.shape))
 
 
 def of_contact(contact: np.ndarray, *, periodic: bool = False) -> Resolution | None:
-    """A contact's points per contact radius and the Hertz rule's prediction (None: no contact)."""
+    """A contact's points per contact radius and the Hertz rule's prediction (None: no contact).
+
+    Parameters
+    ----------
+    contact : ndarray of bool
+        The closed nodes.
+    periodic : bool
+        Whether the array wraps.
+
+    Returns
+    -------
+    Resolution or None
+        The contact's measure, None without contact.
+    """
     value = points_per_contact_radius(contact, periodic=periodic)
     if math.isnan(value):
         return None
@@ -203,7 +313,22 @@ def of_contact(contact: np.ndarray, *, periodic: bool = False) -> Resolution | N
 
 
 def of_process_zone(elements: float, n: int, law: str | None = None) -> Resolution:
-    """A cohesive law's process zone in grid elements and the cohesive rule's prediction."""
+    """A cohesive law's process zone in grid elements and the cohesive rule's prediction.
+
+    Parameters
+    ----------
+    elements : float
+        Grid elements across the process zone.
+    n : int
+        The grid side.
+    law : str, optional
+        A cohesive law's name (:data:`COHESIVE_FITS`) for ``process_zone_elements``.
+
+    Returns
+    -------
+    Resolution
+        The process zone's measure.
+    """
     return Resolution("process_zone_elements", float(elements),
                       predicted_error("process_zone_elements", elements, law=law), n, law)
 
@@ -224,7 +349,28 @@ def of_scene(values: np.ndarray, lengths, *, periodic: bool, contact: np.ndarray
     the window edge fills the spectrum (a lattice of caps), or a measured surface; the patches then decide. On
     self-affine surfaces at 4-64 points per wavelength the two predictions agree within a factor 2.3 (the patches'
     0.7-1.5x the spectrum's). In full contact the area is exact and a band-limited surface's pressure too, and with
-    no contact there is nothing to resolve: the prediction is then 0."""
+    no contact there is nothing to resolve: the prediction is then 0.
+
+    Parameters
+    ----------
+    values : ndarray
+        The heights [length].
+    lengths : sequence of float
+        Window size per axis [length].
+    periodic : bool
+        Periodic window or isolated footprint.
+    contact : ndarray of bool or None
+        The closed nodes of the solved state.
+    zone_elements : float, optional
+        A cohesive law's process zone in elements.
+    law : str, optional
+        A cohesive law's name (:data:`COHESIVE_FITS`) for ``process_zone_elements``.
+
+    Returns
+    -------
+    list of Resolution
+        Every measure that applies, the deciding one first.
+    """
     out = []
     closed = None if contact is None else np.asarray(contact, dtype=bool)
     if periodic:
@@ -258,6 +404,12 @@ def recording():
     Yields the list they are appended to (one :class:`Resolution` per call, its worst measure). Nested: the
     innermost collects.
 
+
+    Yields
+    ------
+    list of Resolution
+        The resolutions measured inside the block.
+
     Examples
     --------
     >>> import contactlib
@@ -276,7 +428,18 @@ def recording():
 
 
 def worst(resolutions) -> Resolution | None:
-    """The resolution with the largest predicted error (None for none)."""
+    """The resolution with the largest predicted error (None for none).
+
+    Parameters
+    ----------
+    resolutions : iterable of Resolution or None
+        Measures (None entries are skipped).
+
+    Returns
+    -------
+    Resolution or None
+        The worst measure (None: nothing measured).
+    """
     resolutions = [r for r in resolutions if r is not None]
     return max(resolutions, key=lambda r: r.predicted_error) if resolutions else None
 
@@ -288,7 +451,20 @@ def _deciding(resolutions) -> list[Resolution]:
 
 
 def record(attrs: dict, resolutions) -> Resolution | None:
-    """Write the measures and the deciding prediction into ``attrs`` (in place); return it."""
+    """Write the measures and the deciding prediction into ``attrs`` (in place); return it.
+
+    Parameters
+    ----------
+    attrs : dict
+        An answer's attributes, updated in place.
+    resolutions : iterable of Resolution
+        The measures.
+
+    Returns
+    -------
+    Resolution or None
+        The worst measure (None: nothing measured).
+    """
     for r in resolutions:
         attrs[r.measure] = r.value
     w = worst(_deciding(resolutions))
@@ -321,7 +497,29 @@ NAMES = {"points_per_wavelength": "grid points per shortest wavelength of the he
 def report(resolutions, *, where: str, guarantee: bool = False, stacklevel: int = 3) -> Resolution | None:
     """Warn once (:class:`ResolutionWarning`) if the worst of ``resolutions`` predicts more than :data:`THRESHOLD`;
     inside :func:`recording`, list it there instead. ``guarantee``: the caller gave ``target_error``, which
-    checked its own bound: nothing more is said. Returns the worst (of the measures that decide, as :func:`record`)."""
+    checked its own bound: nothing more is said. Returns the worst (of the measures that decide, as :func:`record`).
+
+    Parameters
+    ----------
+    resolutions : iterable of Resolution
+        The measures.
+    where : str
+        The entry point's name, for the message.
+    stacklevel : int
+        Passed to :func:`warnings.warn`, so the warning points at the user's call.
+    guarantee : bool
+        The caller gave ``target_error``: record only.
+
+    Returns
+    -------
+    Resolution or None
+        The worst measure (None: nothing measured).
+
+    Warns
+    -----
+    ResolutionWarning
+        When the worst measure predicts more than :data:`THRESHOLD`.
+    """
     w = worst(_deciding(resolutions))
     if w is None:
         return None
@@ -341,7 +539,20 @@ def report(resolutions, *, where: str, guarantee: bool = False, stacklevel: int 
 
 def warn(message: str, *, stacklevel: int = 3) -> None:
     """A :class:`ResolutionWarning` of its own (no measure: e.g. a work of adhesion below the energy method's
-    resolution), said as :func:`report` says one: not inside :func:`recording`, where the answer's attrs hold it."""
+    resolution), said as :func:`report` says one: not inside :func:`recording`, where the answer's attrs hold it.
+
+    Parameters
+    ----------
+    message : str
+        The warning's text.
+    stacklevel : int
+        Passed to :func:`warnings.warn`.
+
+    Warns
+    -----
+    ResolutionWarning
+        Always, outside :func:`recording`.
+    """
     if _RECORDER.get() is None:
         warnings.warn(ResolutionWarning(message), stacklevel=stacklevel + 1)
 
@@ -349,7 +560,37 @@ def warn(message: str, *, stacklevel: int = 3) -> None:
 def guard(ds, values: np.ndarray, lengths, *, periodic: bool, contact=None, where: str, guarantee: bool = False,
           stacklevel: int = 4) -> Resolution | None:
     """Measure a solved scene (:func:`of_scene`; a cohesive law's process zone from ``ds.attrs``, where
-    :func:`contactlib.adhesion.scene_attrs` put it), record it in ``ds.attrs`` and :func:`report` it."""
+    :func:`contactlib.adhesion.scene_attrs` put it), record it in ``ds.attrs`` and :func:`report` it.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        The labelled answer; its ``attrs`` get the measures.
+    values : ndarray
+        The heights [length].
+    lengths : sequence of float
+        Window size per axis [length].
+    periodic : bool
+        Periodic window or isolated footprint.
+    contact : ndarray of bool, optional
+        The closed nodes.
+    where : str
+        The entry point's name, for the message.
+    stacklevel : int
+        Passed to :func:`warnings.warn`, so the warning points at the user's call.
+    guarantee : bool
+        The caller gave ``target_error``: record only.
+
+    Returns
+    -------
+    Resolution or None
+        The worst measure (None: nothing measured).
+
+    Warns
+    -----
+    ResolutionWarning
+        As :func:`report`.
+    """
     zone = ds.attrs.get("process_zone_elements")
     found = of_scene(np.asarray(values), lengths, periodic=periodic, contact=contact, zone_elements=zone,
                      law=ds.attrs.get("adhesion_model"))
@@ -361,7 +602,35 @@ def guard_setup(setup, state, ds, *, where: str, guarantee: bool = False, quiet:
                 stacklevel: int = 5) -> Resolution | None:
     """:func:`guard` for a :func:`contactlib.solve` problem (its validated ``setup``) and its ``state``: the closed
     nodes are the adhesive state's repulsive ones, else those carrying pressure. ``quiet``: record in ``ds.attrs``
-    only (the other answers of one call, which reports once)."""
+    only (the other answers of one call, which reports once).
+
+    Parameters
+    ----------
+    setup : contactlib.Problem
+        The validated problem.
+    state : contactlib.solvers.ContactState
+        Its solved state.
+    ds : xarray.Dataset
+        The labelled answer.
+    where : str
+        The entry point's name, for the message.
+    stacklevel : int
+        Passed to :func:`warnings.warn`, so the warning points at the user's call.
+    guarantee : bool
+        The caller gave ``target_error``: record only.
+    quiet : bool
+        Record only.
+
+    Returns
+    -------
+    Resolution or None
+        The worst measure (None: nothing measured).
+
+    Warns
+    -----
+    ResolutionWarning
+        As :func:`report`.
+    """
     contact = getattr(state, "in_contact", None)
     contact = np.asarray(state.pressure) > 0 if contact is None else contact
     if quiet:
@@ -375,7 +644,29 @@ def guard_setup(setup, state, ds, *, where: str, guarantee: bool = False, quiet:
 
 def guard_stepper(ds, stepper, *, where: str, stacklevel: int = 5) -> Resolution | None:
     """:func:`guard` for a time-stepping run (:class:`contactlib.transient.Stepper`), its contact that of the
-    last step."""
+    last step.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        The labelled run.
+    stepper : contactlib.transient.Stepper
+        The time stepper.
+    where : str
+        The entry point's name, for the message.
+    stacklevel : int
+        Passed to :func:`warnings.warn`, so the warning points at the user's call.
+
+    Returns
+    -------
+    Resolution or None
+        The worst measure (None: nothing measured).
+
+    Warns
+    -----
+    ResolutionWarning
+        As :func:`report`.
+    """
     contact = None if stepper.pressure is None else np.asarray(stepper.pressure) > 0
     return guard(ds, stepper.values, stepper.grid.lengths, periodic=bool(stepper.periodic), contact=contact,
                  where=where, stacklevel=stacklevel)
@@ -385,7 +676,29 @@ def guard_path(ds, setup, *, where: str = "adhesion_curve", stacklevel: int = 5)
     """:func:`guard` for a path of states (:func:`contactlib.adhesion_curve`), which keeps no fields: a
     non-periodic contact is measured as the disc (1D: the strip) of the closed area at the pull-off (the most
     tensile converged state in contact: the path's least resolved state that matters); a cohesive law's process
-    zone as :func:`contactlib.adhesion.scene_attrs` measures it."""
+    zone as :func:`contactlib.adhesion.scene_attrs` measures it.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        The labelled path.
+    setup : contactlib.Problem
+        The validated problem.
+    where : str
+        The entry point's name, for the message.
+    stacklevel : int
+        Passed to :func:`warnings.warn`, so the warning points at the user's call.
+
+    Returns
+    -------
+    Resolution or None
+        The worst measure (None: nothing measured).
+
+    Warns
+    -----
+    ResolutionWarning
+        As :func:`report`.
+    """
     law = setup.adhesion
     if law is not None and law.cohesive and law.work > 0 and "process_zone_elements" not in ds.attrs:
         ds.attrs["process_zone_elements"] = process_zone_length(law, setup.attrs["E_star"]) / max(setup.grid.spacing)
@@ -413,7 +726,33 @@ def guard_asperities(ds, radii, spacing: float, n: int, *, where: str = "two_sca
                      stacklevel: int = 4) -> Resolution | None:
     """:func:`guard` for a field of separate contacts of known ``radii`` [length] on a grid of ``spacing``: the
     contact rule per asperity, weighted by its area (the total area's error), recorded as the rms radius in
-    spacings."""
+    spacings.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        The labelled answer.
+    radii : array_like
+        Contact radii of the asperities [length].
+    spacing : float
+        Grid spacing [length].
+    n : int
+        The grid side.
+    where : str
+        The entry point's name, for the message.
+    stacklevel : int
+        Passed to :func:`warnings.warn`, so the warning points at the user's call.
+
+    Returns
+    -------
+    Resolution or None
+        The worst measure (None: nothing measured).
+
+    Warns
+    -----
+    ResolutionWarning
+        As :func:`report`.
+    """
     a = np.asarray(radii, dtype=float)
     a = a[np.isfinite(a) & (a > 0)] / spacing
     if a.size == 0:

@@ -49,7 +49,28 @@ def predict_pressure(speeds: Sequence[float], pressures: Sequence[np.ndarray], s
     as a power of the speed (``(V tau q)^{+-1}`` for a standard linear solid), so the changes do shrink by a
     constant ratio: on a 256^2 sweep (30 speeds, zeta 1e-3..1e3) the start is 3-10x closer than the secant's
     at zeta >= 1 (relative errors 2e-2 -> 2e-5 against 4e-2 -> 1e-4). Otherwise the secant through the last
-    two answers in ``log(speed)``."""
+    two answers in ``log(speed)``.
+
+    Parameters
+    ----------
+    speeds : sequence of float
+        Speed magnitudes of the answers [length/time], > 0.
+    pressures : sequence of ndarray
+        The pressure fields solved at ``speeds`` [pressure].
+    speed : float
+        The speed to predict at [length/time], > 0.
+
+    Returns
+    -------
+    ndarray or None
+        The predicted pressure field, or None without answers.
+
+    Raises
+    ------
+    ValueError
+        Naming ``speeds`` (not one per answer, or not finite and > 0), ``pressures`` (NaN or infinite values) or
+        ``speed``.
+    """
     if not pressures:
         return None
     if len(speeds) < len(pressures):
@@ -104,6 +125,14 @@ def solve_speeds(heights, sliding_velocities, *, recycle: bool | RecycledSpace =
     list of xarray.Dataset
         One per velocity, in order. A solve that does not converge raises
         :class:`contactlib.ConvergenceError` as :func:`contactlib.solve` does.
+
+    Raises
+    ------
+    ValueError
+        Naming ``sliding_velocities`` (empty, not a sequence, a zero or non-finite velocity) or ``initial_pressure``
+        (given: the path supplies it), and whatever :func:`contactlib.solve` refuses.
+    ConvergenceError
+        As :func:`contactlib.solve`; the answers before it are lost.
     """
     if "initial_pressure" in kwargs:
         raise ValueError("initial_pressure: solve_speeds predicts each speed's start itself; give none")

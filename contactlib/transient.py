@@ -66,7 +66,20 @@ class TimeStepWarning(UserWarning):
 
 class TransientInterrupted(KeyboardInterrupt):
     """A time-stepping run stopped by the user (Ctrl-C): ``dataset`` holds every step done, labelled,
-    ``attrs['status']`` saying where it stopped. Still a ``KeyboardInterrupt``, so it stops a script."""
+    ``attrs['status']`` saying where it stopped. Still a ``KeyboardInterrupt``, so it stops a script.
+
+    Parameters
+    ----------
+    message : str
+        Where the run stopped.
+    dataset : xarray.Dataset
+        Every step done, labelled.
+
+    Attributes
+    ----------
+    dataset : xarray.Dataset
+        Every step done, labelled.
+    """
 
     def __init__(self, message: str, dataset: xr.Dataset):
         super().__init__(message)
@@ -135,6 +148,13 @@ def solve_transient(
         Log a line (logger ``contactlib.transient``, INFO) every this many steps (0: none); default a tenth of
         the run when it has 100 steps or more.
 
+    E, nu : float, optional
+        The elastic shorthand for ``material=contactlib.Elastic(E, nu)``.
+    length : float or tuple, optional
+        Window size [length], required for bare-array heights.
+    length_unit, pressure_unit, time_unit : str
+        udunits strings written to the output's ``units`` attributes.
+
     Returns
     -------
     xarray.Dataset
@@ -149,6 +169,13 @@ def solve_transient(
         A step did not converge: ``err.dataset`` holds the steps before it, labelled, and its residual.
     TransientInterrupted
         Ctrl-C: ``err.dataset`` holds the steps done.
+
+    Warns
+    -----
+    TimeStepWarning
+        When a viscoelastic step slides the surface farther than one grid spacing (``path``).
+    ResolutionWarning
+        When the grid resolves the scene worse than the measured rule asks for 1 %.
     """
     stepper, times, loads, positions, control = prepare_stepper(
         heights, times=times, material=material_of(material, E, nu), mean_pressure=mean_pressure,

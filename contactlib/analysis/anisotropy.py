@@ -23,9 +23,19 @@ def anisotropy_tensor(field, zeta1: float, zeta2: float, *, length=None, n_theta
     zeta1, zeta2 : float
         Band edges as multiples of ``q0 = 2 pi / Lx``, ``zeta1 < zeta2``.
 
+    length : float, optional
+        Window size along x [length], required for a bare array.
+    n_theta : int
+        Number of angles in ``[0, pi)`` at which ``mu2(theta)`` is sampled.
+
     Returns
     -------
     Dataset with ``M`` (dims ``i``, ``j``), ``mu2`` (dim ``theta``), ``gamma``, ``theta_d`` [rad, in [0, pi)].
+
+    Raises
+    ------
+    ValueError
+        For a field that is not 2D, band edges out of order or with no wavevector of the grid, or ``n_theta`` < 2.
     """
     values, grid = values_and_grid(field, length)
     if grid.dim != 2:

@@ -19,7 +19,30 @@ def _pressure(pressure) -> np.ndarray:
 
 
 def contact_area_fraction(pressure) -> float:
-    """Fraction of elements carrying positive pressure [1]."""
+    """Fraction of elements carrying positive pressure [1].
+
+    Parameters
+    ----------
+    pressure : xarray.DataArray or ndarray
+        Pressure field [pressure].
+
+    Returns
+    -------
+    float
+        The fraction of elements with ``p > 0``.
+
+    Raises
+    ------
+    ValueError
+        For an empty field or one with NaN or infinite values.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from contactlib import analysis
+    >>> analysis.contact_area_fraction(np.array([0.0, 1.0, 2.0, 0.0]))
+    0.5
+    """
     p = _pressure(pressure)
     return float(np.count_nonzero(p > 0)) / p.size
 
@@ -27,12 +50,27 @@ def contact_area_fraction(pressure) -> float:
 def contact_clusters(pressure, *, periodic: bool = True, element_area: float = 1.0):
     """Label connected contact patches (4/2-connectivity), merging across periodic edges.
 
+
+    Parameters
+    ----------
+    pressure : xarray.DataArray or ndarray
+        1D or 2D pressure field [pressure].
+    periodic : bool
+        Merge patches that continue across the window's edges.
+    element_area : float
+        Area of one element [length^2] (1D: its length).
+
     Returns
     -------
     labels : ndarray of int
         0 outside contact, 1..n for the clusters, numbered in order of first appearance.
     areas : ndarray of float
         Area of each cluster (element count times ``element_area``).
+
+    Raises
+    ------
+    ValueError
+        For an empty field, NaN or infinite values, or ``element_area`` not finite and > 0.
     """
     if isinstance(element_area, bool) or not isinstance(element_area, numbers.Real) \
             or not (math.isfinite(element_area) and element_area > 0):

@@ -9,7 +9,29 @@ from ..inputs import real_values
 
 def directional_slope(field: np.ndarray, *, lengths, direction: float = 0.0, periodic: bool = True) -> np.ndarray:
     """``d field / ds`` along ``s = (cos direction, sin direction)`` (1D: ``d/dx``) [field/length]:
-    spectral for a periodic field, second-order central differences otherwise (exact on parabolas)."""
+    spectral for a periodic field, second-order central differences otherwise (exact on parabolas).
+
+    Parameters
+    ----------
+    field : ndarray
+        1D or 2D field.
+    lengths : sequence of float
+        Window size per axis [length].
+    direction : float
+        Direction ``s`` [rad] (ignored in 1D).
+    periodic : bool
+        Spectral derivative (periodic) or central differences.
+
+    Returns
+    -------
+    ndarray
+        The slope field [field units / length].
+
+    Raises
+    ------
+    ValueError
+        Naming ``lengths`` when not finite and > 0.
+    """
     field = real_values(field, "field")
     window = np.broadcast_to(np.asarray(lengths, dtype=float), (field.ndim,))
     if not np.all(np.isfinite(window) & (window > 0)):
@@ -54,7 +76,31 @@ def interlocking_friction(pressure, surface, *, lengths, direction: float = 0.0,
     (:func:`contactlib.analysis.traction_power`, equal to round-off). From the rigid heights the derivative misses
     that identity by its discretisation error (1e-5 to 1e-4 on a rough elastic contact, 4-15 % of a viscoelastic
     slide's dissipated power at 4 points per shortest wavelength); where the contact is resolved both agree.
-    ``slopes``: a :class:`SlopeCache` that keeps the surface's slope for the next call with the same surface.
+
+    Parameters
+    ----------
+    pressure : ndarray
+        Pressure field [pressure].
+    surface : ndarray
+        The deformed surface's normal displacement ``u_z`` [length] (positive into the body), on the same grid.
+    lengths : sequence of float
+        Window size per axis [length].
+    direction : float
+        Direction of the rigid surface's motion [rad].
+    periodic : bool
+        Spectral slopes (periodic) or central differences.
+    slopes : SlopeCache, optional
+        Keeps the surface's slope for the next call with the same surface (a speed sweep).
+
+    Returns
+    -------
+    float
+        ``mu_a`` [1]; 0 where the mean pressure is 0.
+
+    Raises
+    ------
+    ValueError
+        Naming ``lengths`` when not finite and > 0.
     """
     p = real_values(pressure, "pressure")
     total = float(p.sum())

@@ -53,14 +53,50 @@ def half_spectrum_weights(grid: Grid) -> np.ndarray:
 
 
 def rms_height(field) -> float:
-    """Root mean square of the field about its mean [field units]."""
+    """Root mean square of the field about its mean [field units].
+
+    Parameters
+    ----------
+    field : xarray.DataArray or ndarray
+        1D or 2D field.
+
+    Returns
+    -------
+    float
+        The rms about the mean [field units].
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from contactlib import analysis
+    >>> analysis.rms_height(np.array([1.0, -1.0, 1.0, -1.0]))
+    1.0
+    """
     values = real_values(field, "field")
     return float(np.sqrt(np.mean((values - values.mean()) ** 2)))
 
 
 def rms_slope(field, *, length=None) -> float:
     """Root mean square gradient ``sqrt(<|grad h|^2>)``, computed spectrally (exact for a
-    periodic band-limited field; the Nyquist mode is dropped as its derivative is undefined)."""
+    periodic band-limited field; the Nyquist mode is dropped as its derivative is undefined).
+
+    Parameters
+    ----------
+    field : xarray.DataArray or ndarray
+        1D or 2D periodic field with at least 2 points a side; a DataArray carries its window.
+    length : float or tuple, optional
+        Window size [length], required for a bare array.
+
+    Returns
+    -------
+    float
+        The rms slope [field units / length].
+
+    Raises
+    ------
+    ValueError
+        When the field is not 1D or 2D, holds NaN or infinite values, or a bare array comes without ``length``.
+    """
     values, grid = values_and_grid(field, length)
     spec = np.fft.rfftn(values)
     q2 = grid.wavenumber() ** 2
@@ -77,9 +113,28 @@ def rms_slope(field, *, length=None) -> float:
 
 
 def psd(field, *, length=None, bins: int | None = None) -> xr.DataArray:
-    """Radially averaged PSD [length^4] in 2D (profile PSD [length^3] in 1D) against |q|.
+    """Radially averaged PSD [length^4] in 2D (profile PSD [length^3] in 1D) against ``|q|``.
 
     Bins are one ``q0 = 2 pi / L`` wide (or ``bins`` log-spaced bins) up to Nyquist.
+
+    Parameters
+    ----------
+    field : xarray.DataArray or ndarray
+        1D or 2D periodic field with at least 2 points a side; a DataArray carries its window.
+    length : float or tuple, optional
+        Window size [length], required for a bare array.
+    bins : int, optional
+        Number of log-spaced bins (default: bins one ``q0`` wide).
+
+    Returns
+    -------
+    xarray.DataArray
+        ``psd`` (2D) or ``psd_1d`` on the ``wavenumber`` coordinate [rad/length], labelled.
+
+    Raises
+    ------
+    ValueError
+        When the field is not 1D or 2D, holds NaN or infinite values, or a bare array comes without ``length``.
     """
     if bins is not None:
         check_whole(bins, "bins")
@@ -105,7 +160,28 @@ def psd(field, *, length=None, bins: int | None = None) -> xr.DataArray:
 
 def fit_hurst(field, *, q_min: float, q_max: float, length=None) -> float:
     """Hurst exponent from a least-squares fit of ``log C`` against ``log q`` on ``[q_min, q_max]``
-    (multiples of ``q0``): slope ``-(dim + 2H)``."""
+    (multiples of ``q0``): slope ``-(dim + 2H)``.
+
+    Parameters
+    ----------
+    field : xarray.DataArray or ndarray
+        1D or 2D periodic field with at least 2 points a side; a DataArray carries its window.
+    q_min, q_max : float
+        The fitted band, as multiples of ``q0 = 2 pi / L``.
+    length : float or tuple, optional
+        Window size [length], required for a bare array.
+
+    Returns
+    -------
+    float
+        The Hurst exponent H.
+
+    Raises
+    ------
+    ValueError
+        When the field is not 1D or 2D, holds NaN or infinite values, or a bare array comes without ``length``. Or ``q_min``, ``q_max`` out of order, or
+        a band with too few spectrum bins.
+    """
     if not (np.isfinite(q_min) and np.isfinite(q_max) and 0 < q_min < q_max):
         raise ValueError(f"need 0 < q_min < q_max (multiples of q0), got q_min={q_min!r}, q_max={q_max!r}")
     values, grid = values_and_grid(field, length)

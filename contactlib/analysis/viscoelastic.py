@@ -51,6 +51,16 @@ def dissipated_power(displacement, *, material, sliding_velocity, length=None, l
         Window size for an ndarray.
     layer : contactlib.Layer, optional
         The layer the displacement is on (its normal compliance replaces the half-space's).
+
+    Returns
+    -------
+    float
+        The dissipated power per unit area [pressure length/time].
+
+    Raises
+    ------
+    ValueError
+        Naming ``material`` (not a material) or ``sliding_velocity`` (not one finite component per axis).
     """
     if not (hasattr(material, "complex_modulus") and hasattr(material, "nu")):
         raise ValueError(f"material must be a contactlib.Viscoelastic or contactlib.Elastic, got {material!r}")
@@ -83,11 +93,31 @@ def _body_modulus(grid: Grid, material, velocity) -> np.ndarray:
 
 def traction_power(grid: Grid, pressure: np.ndarray, tensor, sliding_velocity, *, friction: float = 0.0,
                    direction: float = 0.0) -> float:
-    """``sum_q (q . V) Im[t^H M t] / n^2`` [pressure length/time]: the power per unit area of the traction
+    """``sum_q (q.V) Im[t^H M t] / n^2`` [pressure length/time]: the power per unit area of the traction
     ``t = (mu p s, p)`` on a body whose (complex) Green's tensor is ``tensor`` (module docstring).
 
     With ``t`` along ``s`` the normal-tangential terms cancel in ``t^H M t``, leaving
     ``|p|^2 (Czz + mu^2 (Cxx (n . s)^2 + Canti (t . s)^2))`` with ``n = q/|q|``, ``t`` across it.
+
+    Parameters
+    ----------
+    grid : contactlib.Grid
+        The periodic grid.
+    pressure : ndarray
+        Normal pressure [pressure].
+    tensor : contactlib.kernels.tensor.GreenTensor
+        The body's (complex) surface Green's tensor.
+    sliding_velocity : sequence of float
+        Velocity of the rigid surface [length/time].
+    friction : float
+        Coulomb coefficient ``mu``.
+    direction : float
+        Sliding direction [rad].
+
+    Returns
+    -------
+    float
+        The power per unit area [pressure length/time].
     """
     spectrum = scipy.fft.rfftn(pressure)  # numpy's transform, 3x faster (1 ms at 512^2): once per labelled solve
     form = tensor.normal

@@ -64,7 +64,22 @@ def _wake_antiderivative(y: np.ndarray) -> np.ndarray:
 
 def element_influence(r_lo: np.ndarray, r_hi: np.ndarray, *, material, speed: float) -> np.ndarray:
     """``int G_V(r) dr`` from ``r_lo`` to ``r_hi`` [length^2/pressure]: the displacement at a point a distance
-    ``r`` (field minus source, along the sliding) from a unit uniform pressure, over the element."""
+    ``r`` (field minus source, along the sliding) from a unit uniform pressure, over the element.
+
+    Parameters
+    ----------
+    r_lo, r_hi : ndarray
+        Ends of the element relative to the field point, along the sliding [length].
+    material : contactlib.Viscoelastic
+        A standard linear solid.
+    speed : float
+        Sliding speed [length/time].
+
+    Returns
+    -------
+    ndarray
+        The influence [length^2/pressure].
+    """
     (E, tau), = material.prony
     E0, E_inf, nu = material.E0, material.E0 + E, material.nu
     D = 1 / E0 - 1 / E_inf
@@ -108,7 +123,25 @@ def _active_set(dense: np.ndarray, heights: np.ndarray, force: float, h: float, 
 class SlidingCylinder:
     """Hunter's results for one speed: ``x`` [length] element centres, ``pressure`` [pressure], and the
     contact's ``leading`` / ``trailing`` edges (element edges of the outermost loaded elements), ``width``,
-    ``offset`` (its centre ahead of the axis) and the friction coefficient ``mu = int p x dx / (R P)``."""
+    ``offset`` (its centre ahead of the axis) and the friction coefficient ``mu = int p x dx / (R P)``.
+
+    Attributes
+    ----------
+    x : ndarray
+        Element centres [length].
+    pressure : ndarray
+        Pressure on the elements [pressure].
+    leading, trailing : float
+        Edges of the contact [length].
+    width : float
+        Contact width [length].
+    offset : float
+        Centre of the contact ahead of the axis [length].
+    friction_coefficient : float
+        ``int p x dx / (R P)`` [1].
+    residual : float
+        Residual of the active-set solve.
+    """
 
     x: np.ndarray
     pressure: np.ndarray
@@ -123,7 +156,36 @@ class SlidingCylinder:
 def solve(*, radius: float, load: float, material, speed: float, half_span: float, n: int) -> SlidingCylinder:
     """The cylinder of ``radius`` [length] pressed by ``load`` [force/length] sliding at ``speed``
     [length/time] on the standard linear solid ``material``, on ``n`` elements over ``|x| < half_span``
-    (which must hold the contact)."""
+    (which must hold the contact).
+
+    Parameters
+    ----------
+    radius : float
+        Cylinder radius [length].
+    load : float
+        Load per unit width [force/length].
+    material : contactlib.Viscoelastic
+        A standard linear solid (one Prony branch).
+    speed : float
+        Sliding speed [length/time], > 0.
+    half_span : float
+        Half-length of the solved span [length], which must hold the contact.
+    n : int
+        Number of elements.
+
+    Returns
+    -------
+    SlidingCylinder
+        Pressure, edges, offset and friction coefficient.
+
+    Raises
+    ------
+    ValueError
+        Naming ``material`` (not a standard linear solid), ``speed`` (not > 0) or ``half_span`` (the contact reaches
+        the span's end).
+    RuntimeError
+        When the active set does not settle.
+    """
     if len(material.prony) != 1:
         raise ValueError("material: Hunter's solution is for a standard linear solid (one Prony branch)")
     if not speed > 0:

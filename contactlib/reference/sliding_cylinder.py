@@ -143,6 +143,22 @@ def pressure(x, P: float, R: float, E: float, nu: float, mu: float):
     written as ``2 P cos(pi gamma) / (pi a^2 (1 - 4 gamma^2)) * (...)`` (same thing, since
     ``E*/R = 4P / (pi a^2 (1 - 4 gamma^2))``). Parameters as in :func:`contact`.
 
+
+    Parameters
+    ----------
+    x : array_like
+        Positions in the cylinder's frame [length].
+    P : float
+        Normal load per unit width [force/length].
+    R : float
+        Cylinder radius [length].
+    E : float
+        Young's modulus of the half-space [pressure].
+    nu : float
+        Poisson ratio [-].
+    mu : float
+        Coulomb friction coefficient [-].
+
     Returns
     -------
     numpy.ndarray
@@ -164,5 +180,23 @@ def interlocking_friction(P: float, R: float, E: float, nu: float, mu: float) ->
     the horizontal force the pressure exerts against the cylinder's motion, per unit load. Positive would
     resist sliding; here it is ``<= 0`` for ``mu >= 0``, ``nu <= 1/2`` (pressure sits on the trailing side).
     Parameters as in :func:`contact`.
+
+    Parameters
+    ----------
+    P : float
+        Normal load per unit width [force/length].
+    R : float
+        Cylinder radius [length].
+    E : float
+        Young's modulus of the half-space [pressure].
+    nu : float
+        Poisson ratio [-].
+    mu : float
+        Coulomb friction coefficient [-].
+
+    Returns
+    -------
+    float
+        mu_a [1], <= 0 for mu >= 0 and nu <= 1/2.
     """
     return contact(P, R, E, nu, mu).pressure_centroid / R

@@ -37,6 +37,16 @@ def clausen2(theta):
     Reduced to ``[-pi, pi]`` (odd, ``2 pi``-periodic), then its series
     ``theta - theta ln|theta| + sum_k |B_2k| theta^(2k+1) / (2k (2k+1) (2k)!)`` (converges for
     ``|theta| < 2 pi``; 30 terms reach round-off at ``pi``).
+
+    Parameters
+    ----------
+    theta : float or array_like
+        Angle [rad].
+
+    Returns
+    -------
+    ndarray
+        Cl2(theta).
     """
     t = np.asarray(theta, dtype=float)
     t = t - 2 * np.pi * np.round(t / (2 * np.pi))
@@ -53,7 +63,24 @@ def clausen2(theta):
 def element_influence(x, *, length: float, n: int, nu: float) -> np.ndarray:
     """Periodic normal displacement at ``x`` [length] (any positions) due to a unit uniform pressure on the
     element ``|x| < dx/2`` (``dx = length/n``) of a half-space of unit Young's modulus, zero-mean
-    [length/pressure]: ``-(2 (1 - nu^2)/pi) int ln|2 sin(pi (x - s)/length)| ds``."""
+    [length/pressure]: ``-(2 (1 - nu^2)/pi) int ln|2 sin(pi (x - s)/length)| ds``.
+
+    Parameters
+    ----------
+    x : array_like
+        Positions [length].
+    length : float
+        Period of the profile [length].
+    n : int
+        Number of elements over the period.
+    nu : float
+        Poisson ratio.
+
+    Returns
+    -------
+    ndarray
+        The displacement at ``x`` [length/pressure].
+    """
     dx = length / n
     x = np.asarray(x, dtype=float)
     a, b = 2 * np.pi * (x - dx / 2) / length, 2 * np.pi * (x + dx / 2) / length
@@ -65,6 +92,24 @@ def steady_sliding_influence(n: int, *, length: float, material, velocity: float
 
     ``order`` Gauss-Legendre points per panel; panels run between element edges, and where the creep's
     decay length ``V lambda_j`` is shorter than an element the first panels are split geometrically.
+
+    Parameters
+    ----------
+    n : int
+        Number of elements.
+    length : float
+        Period [length].
+    material : contactlib.Viscoelastic
+        The body.
+    velocity : float
+        Sliding velocity [length/time].
+    order : int
+        Gauss-Legendre points per panel.
+
+    Returns
+    -------
+    ndarray
+        ``G_V`` at the ``n`` node offsets [length/pressure].
     """
     dx = length / n
     offsets = np.arange(n) * dx
@@ -95,7 +140,13 @@ def steady_sliding_influence(n: int, *, length: float, material, velocity: float
 
 class CirculantOperator:
     """A dense periodic influence matrix ``A[i, j] = influence[(i - j) mod n]`` applied by matrix
-    products (no FFT): the operator interface :func:`contactlib.solvers.solve_active_set` takes."""
+    products (no FFT): the operator interface :func:`contactlib.solvers.solve_active_set` takes.
+
+    Parameters
+    ----------
+    influence : ndarray
+        First column of the circulant matrix.
+    """
 
     periodic = True
 
@@ -117,7 +168,28 @@ def solve_profile(heights, *, length: float, material, velocity: float, mean_pre
                   tol: float = 1e-10) -> ContactState:
     """The contact of a periodic profile ``heights`` [length] sliding at ``velocity`` [length/time] on a
     ``material`` half-space under ``mean_pressure`` [pressure], by this module's route: real-space
-    ``G_V`` and the active-set method."""
+    ``G_V`` and the active-set method.
+
+    Parameters
+    ----------
+    heights : ndarray
+        Profile heights [length], periodic.
+    length : float
+        Period [length].
+    material : contactlib.Viscoelastic
+        The body.
+    velocity : float
+        Sliding velocity [length/time].
+    mean_pressure : float
+        Mean pressure [pressure].
+    tol : float
+        Tolerance of the active-set solve.
+
+    Returns
+    -------
+    contactlib.solvers.ContactState
+        The solved state.
+    """
     heights = np.asarray(heights, dtype=float)
     operator = CirculantOperator(steady_sliding_influence(heights.size, length=length, material=material,
                                                           velocity=velocity))

@@ -26,6 +26,18 @@ def resample(heights: xr.DataArray, n: int) -> xr.DataArray:
     n : int
         Points per side of the new grid.
 
+
+    Returns
+    -------
+    xarray.DataArray
+        The same surface on ``n`` points per side, with the attributes of ``heights``.
+
+
+    Raises
+    ------
+    ValueError
+        When ``heights`` is not a DataArray with its coordinates, or ``n`` is not an integer >= 2.
+
     Examples
     --------
     >>> import contactlib

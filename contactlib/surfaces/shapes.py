@@ -44,7 +44,41 @@ def _per_asperity(name: str, value, k: int) -> np.ndarray:
 def wavy(n: int, *, length: float = 1.0, amplitude: float, wavelengths: int = 1, dim: int = 1,
          length_unit: str = "m") -> xr.DataArray:
     """``amplitude cos(q x)`` (1D) or the egg-box ``amplitude cos(q x) cos(q y)`` (2D), with
-    ``q = 2 pi wavelengths / length``; a crest sits at the origin."""
+    ``q = 2 pi wavelengths / length``; a crest sits at the origin.
+
+    Parameters
+    ----------
+    n : int
+        Points per side (``n x n`` in 2D, ``n`` in 1D), at least 2.
+    length : float
+        Window size [length].
+    amplitude : float
+        Amplitude [length].
+    wavelengths : int
+        Whole wavelengths over the window, in ``[1, n/2]``.
+    dim : {1, 2}
+        A profile (1D) or a surface (2D).
+    length_unit : str
+        udunits string written to the ``units`` attributes of the heights and coordinates.
+
+    Returns
+    -------
+    xarray.DataArray
+        ``height`` [length] on ``("x", "y")`` (2D) or ``("x",)`` (1D), coordinates from 0, with ``units`` and
+        ``long_name``.
+
+    Raises
+    ------
+    ValueError
+        Naming ``n``, ``dim`` or ``wavelengths`` out of range.
+
+    Examples
+    --------
+    >>> import contactlib
+    >>> h = contactlib.surfaces.wavy(8, amplitude=0.01)
+    >>> float(h[0])
+    0.01
+    """
     amplitude = number("amplitude", amplitude, lower=0.0, lower_open=True)
     grid = _grid(n, length, dim)
     length = grid.lengths[0]
@@ -63,7 +97,39 @@ def wavy(n: int, *, length: float = 1.0, amplitude: float, wavelengths: int = 1,
 
 
 def paraboloid(n: int, *, length: float = 1.0, radius: float, dim: int = 2, length_unit: str = "m") -> xr.DataArray:
-    """Sphere (2D) or cylinder (1D) tip ``-r^2 / (2 radius)`` centred in the window, apex at 0."""
+    """Sphere (2D) or cylinder (1D) tip ``-r^2 / (2 radius)`` centred in the window, apex at 0.
+
+    Parameters
+    ----------
+    n : int
+        Points per side (``n x n`` in 2D, ``n`` in 1D), at least 2.
+    length : float
+        Window size [length].
+    radius : float
+        Radius of curvature at the apex [length].
+    dim : {1, 2}
+        A profile (1D) or a surface (2D).
+    length_unit : str
+        udunits string written to the ``units`` attributes of the heights and coordinates.
+
+    Returns
+    -------
+    xarray.DataArray
+        ``height`` [length] on ``("x", "y")`` (2D) or ``("x",)`` (1D), coordinates from 0, with ``units`` and
+        ``long_name``.
+
+    Raises
+    ------
+    ValueError
+        Naming ``n`` or ``dim`` out of range.
+
+    Examples
+    --------
+    >>> import contactlib
+    >>> h = contactlib.surfaces.paraboloid(64, length=1.0, radius=1.0)
+    >>> float(h.sel(y=0.5).idxmax())  # the apex is at the window's centre
+    0.5
+    """
     radius = number("radius", radius, lower=0.0, lower_open=True)
     grid = _grid(n, length, dim)
     length = grid.lengths[0]
@@ -95,6 +161,39 @@ def spheres(n: int, *, length: float = 1.0, radius, summit_height=None, centers=
     asperity): ``asperity_center_x``, ``asperity_center_y`` [length] (2D only), ``asperity_radius``
     [length] and ``asperity_summit_height`` [length], so the same object feeds :func:`contactlib.solve`
     and :func:`contactlib.two_scale.solve`.
+
+
+    Parameters
+    ----------
+    n : int
+        Points per side (``n x n`` in 2D, ``n`` in 1D), at least 2.
+    length : float
+        Window size [length].
+    radius : float or array_like
+        Sphere radius [length], one value or one per asperity.
+    summit_height : float or array_like, optional
+        Summit heights above the base [length] before the scatter (see above).
+    centers : array_like, optional
+        Explicit centres, shape ``(k, dim)`` [length].
+    count : int, optional
+        Number of asperities at uniformly random positions.
+    lattice : int, optional
+        Asperities per side of a square lattice.
+    height_std : float
+        Standard deviation of the summits' Gaussian scatter [length].
+    seed : int
+        Seed of ``numpy.random.default_rng`` for the positions and the scatter.
+    dim : {1, 2}
+        A profile (1D) or a surface (2D).
+    length_unit : str
+        udunits string written to the ``units`` attributes of the heights and coordinates.
+
+
+    Returns
+    -------
+    xarray.DataArray
+        ``height`` [length] on ``("x", "y")`` (2D) or ``("x",)`` (1D), coordinates from 0, with ``units`` and
+        ``long_name``. Its ``attrs`` hold the asperity table.
 
     Raises
     ------

@@ -19,6 +19,24 @@ def self_affine_psd(q, *, q0: float, hurst: float, q_low: float, q_roll: float, 
     effective (stretched) wavenumber for anisotropic surfaces. A mode within ``EDGE_TOLERANCE``
     (1e-9 of ``q0``) of ``q_low`` or ``q_cutoff`` is in the band, so the rounding of ``q`` never
     moves a mode on an edge out of it, whatever the window length.
+
+    Parameters
+    ----------
+    q : float or array_like
+        Wavenumber [1/length] (or an effective, stretched one).
+    q0 : float
+        Fundamental wavenumber ``2 pi / length`` [1/length].
+    hurst : float
+        Hurst exponent H.
+    q_low, q_roll, q_cutoff : float
+        Band edges as multiples of ``q0``.
+    dim : {1, 2}
+        Dimension of the surface (the exponent is ``-(dim + 2 H)``).
+
+    Returns
+    -------
+    ndarray
+        ``C(q)``, 1 on the plateau.
     """
     k = np.asarray(q) / q0
     exponent = -(dim + 2.0 * hurst)

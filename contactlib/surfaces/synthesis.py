@@ -60,9 +60,20 @@ def self_affine(
         PSD holds on average); ``random-phase``: every mode has exactly the amplitude ``sqrt(C)``
         and a random phase (the PSD and slope tensor hold for each realisation).
 
+    dim : {1, 2}
+        A profile (1D) or a surface (2D).
+    length_unit : str
+        udunits string written to the ``units`` attributes of the heights and coordinates.
+
     Returns
     -------
     xarray.DataArray ``height`` with dims ``("x", "y")`` or ``("x",)``.
+
+    Raises
+    ------
+    ValueError
+        Naming the parameter: ``n``, ``dim``, band edges out of order or beyond Nyquist (``q_cutoff``), not exactly one
+        of ``rms_height`` and ``rms_slope``, an unknown ``synthesis``, anisotropy in 1D, or a band without modes.
     """
     n = check_whole(n, "n", 2)
     if isinstance(dim, bool) or dim not in (1, 2):

@@ -177,6 +177,12 @@ def asperity_table(asperities, *, length: float | None = None, periodic: bool | 
         [length]; ``radius`` is then not used (any positive value) and ``summit_height`` only needs to be
         positive.
 
+
+    Returns
+    -------
+    AsperityTable
+        The validated table.
+
     Raises
     ------
     ValueError
@@ -297,7 +303,25 @@ def check_separate(table: AsperityTable) -> None:
 def asperity_forces(pressure: np.ndarray, table: AsperityTable) -> np.ndarray:
     """Force on each asperity from a pressure field on the table's grid (e.g. :func:`contactlib.solve`'s):
     the pressure summed over its footprint times the node area [force]. With separate footprints every
-    loaded node belongs to one asperity at most."""
+    loaded node belongs to one asperity at most.
+
+    Parameters
+    ----------
+    pressure : ndarray
+        Pressure field on the table's grid [pressure].
+    table : AsperityTable
+        The asperities, with their grid.
+
+    Returns
+    -------
+    ndarray
+        Force on each asperity [force].
+
+    Raises
+    ------
+    ValueError
+        When the table has no grid, or ``pressure`` is not on it.
+    """
     if table.grid is None:
         raise ValueError("asperities: the table has no grid to read a pressure field on")
     pressure = np.asarray(pressure, dtype=float)

@@ -41,11 +41,20 @@ def random_asperity_field(count: int, *, coverage: float, nodes_per_spacing: int
         Grid points per side instead (e.g. a fast FFT size at least ``nodes_per_spacing sqrt(N)``); the
         asperities do not depend on it.
 
+    max_attempts : int
+        Random placements tried per asperity before the coverage is refused.
+
     Returns
     -------
     xarray.DataArray
         :func:`contactlib.surfaces.spheres` heights [m], with the asperity table in ``attrs`` and
         ``coverage`` recorded.
+
+    Raises
+    ------
+    ValueError
+        Naming ``coverage`` (outside (0, 0.54), or too dense to place), ``height_scatter``, ``nodes_per_spacing`` or
+        ``n``.
     """
     if not 0 < coverage < 0.54:
         raise ValueError(f"coverage must lie in (0, 0.54) (random sequential addition jams at 0.547), got {coverage!r}")

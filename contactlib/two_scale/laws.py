@@ -34,6 +34,12 @@ is below ``r_g`` for a convex shape: the window holds it with room for the decay
 class TabulatedLaw:
     """A single-asperity law interpolated from a table (see the module docstring).
 
+
+    Raises
+    ------
+    ValueError
+        When the tables are not 1D, of one length >= 3, positive and increasing (a convex asperity).
+
     Attributes
     ----------
     penetration, force, contact_radius : ndarray
@@ -163,9 +169,18 @@ def tabulated_law(drop: Callable[[np.ndarray], np.ndarray], *, footprint_radius:
     tol : float
         The full solver's tolerance.
 
+    smallest : float
+        The smallest tabulated penetration, as a fraction of ``max_penetration``.
+
     Returns
     -------
     TabulatedLaw
+
+    Raises
+    ------
+    ValueError
+        Naming ``material`` (not elastic, or given with ``E``, ``nu``), ``drop`` (not callable) or a size that is
+        not finite and > 0.
     """
     if material is not None:
         if E is not None or nu is not None:

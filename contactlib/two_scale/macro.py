@@ -72,7 +72,15 @@ class MacroState:
 
 
 class HertzLaw:
-    """Single-asperity law ``P = (4/3) E* sqrt(R) d^(3/2)`` and its derivative ``2 E* a``, ``a = sqrt(R d)``."""
+    """Single-asperity law ``P = (4/3) E* sqrt(R) d^(3/2)`` and its derivative ``2 E* a``, ``a = sqrt(R d)``.
+
+    Parameters
+    ----------
+    radius : ndarray
+        Sphere radius of each asperity [length].
+    E_star : float
+        Contact modulus [pressure].
+    """
 
     def __init__(self, radius: np.ndarray, E_star: float):
         self.radius, self.E_star = np.asarray(radius, dtype=float), float(E_star)
@@ -192,6 +200,17 @@ def solve_macro(table: AsperityTable, interaction: PointInteraction, law: HertzL
     finite_size : FiniteSize, optional
         Add the finite size of the contacts to the point-load interaction (Hertz contacts; the Newton steps
         take it at the current contact radii, the residual at the exact ones).
+
+    Returns
+    -------
+    MacroState
+        Forces, local penetrations, approach, iterations, residual and convergence.
+
+    Raises
+    ------
+    ValueError
+        Naming ``mean_pressure`` when no asperity is in contact during the iteration or no approach carries the
+        load.
     """
     z_top = float(table.summit_height.max()) if z_top is None else float(z_top)
     # a known displacement lowers the summits it lifts the body above: the same problem, shifted heights

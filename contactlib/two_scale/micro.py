@@ -163,6 +163,44 @@ def solve_micro(table: AsperityTable, macro: MacroState, law: HertzLaw, E_star: 
     control, the total is within ``force_tol``;
     the local solves then run at ``LOCAL_TOL_FACTOR * force_tol``.
 
+
+    Parameters
+    ----------
+    table : AsperityTable
+        The asperities with the surface's grid.
+    macro : MacroState
+        The macro step's forces, the sweeps' start.
+    law : HertzLaw or TabulatedLaw
+        The single-asperity law of the coarse correction.
+    E_star : float
+        Contact modulus [pressure].
+    interaction : PointInteraction
+        The macro interaction operator of the coarse correction.
+    z_top : float
+        Height of the highest summit [length].
+    total_force : float or None
+        Load control: the total force [force]; None: displacement control at ``macro.penetration``.
+    tol : float
+        Stop when the field changes by less than this between sweeps (relative).
+    max_iter : int
+        Bound on the sweeps.
+    known_displacement : ndarray, optional
+        A displacement that does not depend on the pressure sought [length] (above).
+    known_force : ndarray, optional
+        Per-asperity force of the pressure causing it [force] (above).
+    initial_pressure : ndarray, optional
+        The first sweep's pressure [pressure] (above).
+    local_max_iter : int
+        Iteration bound of each local solve.
+    force_tol : float, optional
+        Stop on the estimated change of the forces instead (above).
+
+
+    Returns
+    -------
+    MicroState
+        Fields, forces, approach, sweeps and convergence.
+
     Raises
     ------
     ValueError

@@ -119,6 +119,11 @@ def solve_transient(
         where the macro forces only start each step's sweeps, as :func:`contactlib.two_scale.solve` (a hundredth
         of ``force_tol``, else of ``tol``, within [1e-8, 1e-4]).
 
+    E, nu : float, optional
+        The elastic shorthand for ``material=contactlib.Elastic(E, nu)``.
+    length_unit, pressure_unit, time_unit : str
+        udunits strings written to the output's ``units`` attributes.
+
     Returns
     -------
     xarray.Dataset
