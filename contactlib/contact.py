@@ -13,7 +13,8 @@ from . import resolution
 from .bodies import Layer
 from .inputs import check_tolerance, real_values
 from .materials import Elastic, Viscoelastic
-from .problem import ConvergenceError, prepare
+from .errors import ConvergenceError
+from .problem import prepare
 from .solvers import ContactState
 
 __all__ = ["solve", "solve_tolerances", "ConvergenceError"]

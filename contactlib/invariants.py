@@ -28,7 +28,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ._numba import vector_jit
-from .contact import ConvergenceError
+from .errors import ConvergenceError
 from .solvers.cohesive_newton import LAW_WEIGHT
 
 RESIDUAL_MARGIN = 2.0

@@ -23,9 +23,11 @@ import xarray as xr
 
 from . import accuracy, adhesive_choice, adhesive_contact, area_target, fft, resolution
 from ._version import __version__
+from .errors import ConvergenceError
 from .analysis.friction import interlocking_friction
 from .analysis.viscoelastic import traction_power
 from .bodies import BodyModel, KernelCache, body_model
+from .invariants import verify_solve
 from .inputs import EDGE_TENSION, check_below_full_contact, check_loads, edge_tension, real_values, round_off_floor, \
     touches_edge
 from .labels import attrs_for, to_dataset, window_variables
@@ -33,36 +35,6 @@ from .materials import Viscoelastic, contact_modulus
 from .scene import Scene, scene_of
 from .solvers import ContactState, nonsymmetric_choice, symmetric_choice
 from .solvers.recycle import RecycledSpace
-
-
-class ConvergenceError(RuntimeError):
-    """A solve did not reach its tolerance within ``max_iter``, or stalled before it (the CG
-    residual stopped falling, e.g. at the round-off floor of a tolerance set too tight).
-
-    Parameters
-    ----------
-    message : str
-        What did not converge, with the residual and the tolerance.
-    residual : float
-        The residual reached.
-    dataset : xarray.Dataset
-        The partial state.
-
-    Attributes
-    ----------
-    residual : float
-        The residual reached.
-    dataset : xarray.Dataset
-        The partial (unconverged) state, labelled like a converged one, ``attrs['converged'] = 0``.
-    datasets : list of xarray.Dataset or None
-        From :func:`solve_tolerances`: the answer at every tolerance asked, reached or not.
-    """
-
-    def __init__(self, message: str, *, residual: float, dataset: xr.Dataset):
-        super().__init__(message)
-        self.residual = residual
-        self.dataset = dataset
-        self.datasets = None
 
 
 @dataclasses.dataclass(eq=False, repr=False)
@@ -329,7 +301,6 @@ class Problem:
                           if self.adhesion is not None and (self.solver_args["mean_pressure"] or 0.0) < 0 else ""))
             ds.attrs["convergence_message"] = message  # the partial state says why it is partial
             raise ConvergenceError(message, residual=state.residual, dataset=ds)
-        from .invariants import verify_solve  # imported here: invariants subclasses this module's ConvergenceError
         verify_solve(self, state, ds)
 
 

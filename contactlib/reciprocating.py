@@ -15,7 +15,7 @@ import numpy as np
 import xarray as xr
 
 from .bodies import Layer
-from .contact import ConvergenceError
+from .errors import ConvergenceError
 from .invariants import step_invariants, with_dataset
 from .inputs import check_tolerance, check_whole, grid_of, number
 from .labels import attrs_for

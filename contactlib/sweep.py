@@ -32,7 +32,7 @@ import xarray as xr
 
 from . import fft, resolution
 from ._version import __version__
-from .contact import ConvergenceError
+from .errors import ConvergenceError
 from .labels import VARIABLES
 
 log = logging.getLogger(__name__)

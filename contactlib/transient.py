@@ -33,7 +33,7 @@ import xarray as xr
 from ._version import __version__
 from .analysis.friction import directional_slope
 from .bodies import Layer, body_model
-from .contact import ConvergenceError
+from .errors import ConvergenceError
 from .hereditary import PronyHistory
 from .kernels.nyquist import even_on_nyquist
 from .invariants import check_relaxed_limit, contact_checks, relaxed_hold, step_invariants, verify, with_dataset

@@ -9,7 +9,7 @@ import numpy as np
 import xarray as xr
 
 from .._version import __version__
-from ..contact import ConvergenceError
+from ..errors import ConvergenceError
 from ..invariants import verify_two_scale
 from ..inputs import number
 from ..labels import attrs_for, dataset

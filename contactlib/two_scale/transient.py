@@ -37,7 +37,7 @@ import numpy as np
 import xarray as xr
 
 from .._version import __version__
-from ..contact import ConvergenceError
+from ..errors import ConvergenceError
 from ..invariants import verify_two_scale_series
 from ..hereditary import PronyHistory
 from ..inputs import load_history, time_values
