@@ -18,7 +18,9 @@ import time
 
 from distributed import Client, LocalCluster, get_task_stream
 
-from contactlib import studies, sweep
+from contactlib import studies
+
+from contactlib.pipeline import sweep
 
 CONSTANTS = dict(q_low=1, q_roll=2, q_cutoff=64, rms_slope=0.1, E=1.0, nu=0.5, tol=1e-8, max_iter=10000,
                  kernel="spectral", hurst=0.5)

@@ -20,8 +20,8 @@ from pathlib import Path
 import numpy as np
 
 import contactlib
-from contactlib.grid import Grid
-from contactlib.operators import Compliance
+from contactlib.core.grid import Grid
+from contactlib.model.operators import Compliance
 from contactlib.solvers import solve_periodic_displacement, solve_polonsky_keer
 
 from .common import timed

@@ -12,7 +12,7 @@ revision in the header) and written with every number to ``--json``:
    reaches 15 at friction 1), and ``plate`` (a remote-pressure layer at ``q0 h = 0.1``, ``--nu``: plate-like,
    the semismooth solver with the long-wave coarse space). Each scene gets its own mean pressure per contact fraction.
 2. **layer**: frictionless, at the half-space scene's surface and load (``--nu``): a confined layer
-   at ``q0 h = 1`` and a thick one (``--thick-q0h`` 20) that :func:`contactlib.bodies.body_model`
+   at ``q0 h = 1`` and a thick one (``--thick-q0h`` 20) that :func:`contactlib.model.bodies.body_model`
    must reduce to the half-space (``attrs['body']``), over the half-space solve.
 3. **cm**: the ``q0 h = 1`` confined layer of measurement 2 (2D, ``--cm-sizes``) against
    ContactMechanics' ``PeriodicFFTElasticHalfSpace(thickness=...)`` and its Polonsky-Keer solver
@@ -269,7 +269,7 @@ def table_layer(rows, args) -> list[str]:
 def kernel_difference(cm_green: np.ndarray, n: int, E: float, nu: float, thickness: float) -> float:
     """Largest relative difference between ContactMechanics' Green's function (its muGrid layout is
     the transpose of numpy's rfft2) and contactlib's layer compliance, ``q = 0`` included."""
-    from contactlib.grid import Grid
+    from contactlib.core.grid import Grid
     from contactlib.kernels.tensor import surface_green_tensor
 
     ours = surface_green_tensor(Grid((n, n), (1.0, 1.0)), E, nu, thickness, "confined").normal

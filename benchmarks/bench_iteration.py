@@ -36,9 +36,9 @@ import numba
 import numpy as np
 
 import contactlib
-from contactlib import fft as cfft
-from contactlib.grid import Grid
-from contactlib.operators import Compliance, weighted_power_sum
+from contactlib.core import fft as cfft
+from contactlib.core.grid import Grid
+from contactlib.model.operators import Compliance, weighted_power_sum
 from contactlib.solvers import solve_polonsky_keer
 
 from .common import iteration_internals, pressure_for_area, self_affine_array, timed

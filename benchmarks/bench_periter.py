@@ -17,9 +17,9 @@ import time
 
 import numpy as np
 
-from contactlib import fft
-from contactlib.grid import Grid
-from contactlib.operators import Compliance
+from contactlib.core import fft
+from contactlib.core.grid import Grid
+from contactlib.model.operators import Compliance
 from contactlib.solvers import solve_polonsky_keer
 from contactlib.surfaces import self_affine
 

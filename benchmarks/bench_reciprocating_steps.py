@@ -73,8 +73,8 @@ def scan() -> None:
                   f"{out.attrs['steps_per_cycle']} | {'settled' if settled else 'not settled'} | {float(out.energy_balance):+.4f} | {change:.4f} | "
                   f"{float(twice.energy_balance):+.4f} | {seconds + more:.1f} |", flush=True)
     settled = [r for r in rows if r[0]]
-    above = [r for r in settled if abs(r[1]) > contactlib.reciprocating.ENERGY_BALANCE]
-    below = [r for r in settled if abs(r[1]) <= contactlib.reciprocating.ENERGY_BALANCE]
+    above = [r for r in settled if abs(r[1]) > contactlib.problems.reciprocating.ENERGY_BALANCE]
+    below = [r for r in settled if abs(r[1]) <= contactlib.problems.reciprocating.ENERGY_BALANCE]
     print(f"\n# {len(rows)} scenes, {len(settled)} settled; {len(above)} past the balance bound (energy moved "
           f"{', '.join(f'{r[2]:.3f}' for r in above)} on doubling); below it at most {max(r[2] for r in below):.4f}, "
           f"under 1 % in {sum(r[2] < 0.01 for r in below)} of {len(below)}")

@@ -18,10 +18,10 @@ from pathlib import Path
 import numpy as np
 
 import contactlib
-from contactlib.grid import Grid
-from contactlib.operators import Compliance
+from contactlib.core.grid import Grid
+from contactlib.model.operators import Compliance
 from contactlib.solvers import solve_polonsky_keer
-from contactlib.solvers.ccg import RESTART_FRACTION
+from contactlib.solvers.symmetric.ccg import RESTART_FRACTION
 
 RULES = {"every re-entry": 0.0, f"default ({RESTART_FRACTION:g})": RESTART_FRACTION}
 

@@ -15,7 +15,7 @@ equal accuracy*:
   the budget, and a capped solve still short of contactlib's accuracy is reported as a lower
   bound on its time.
 * FFT pair = median time of one planned pyfftw forward + inverse real FFT of the same grid
-  (``contactlib.fft.get_fft(shape)``), measured in the same run. A Polonsky-Keer iteration needs
+  (``contactlib.core.fft.get_fft(shape)``), measured in the same run. A Polonsky-Keer iteration needs
   two convolutions, contactlib's preconditioned one two and a half (``K p``, the preconditioner,
   the forward transform of ``t``; ``Peer.fft_pairs_per_iteration``), so
   ``non-FFT share = (t_iter - k t_pair) / t_iter`` with that k.
@@ -41,7 +41,7 @@ from pathlib import Path
 
 import numpy as np
 
-from contactlib import fft as cfft
+from contactlib.core import fft as cfft
 
 from .common import (REPO, child_command, host_info, ladder, pressure_for_area, rel_l2, self_affine_array,
                      write_json as write_payload)

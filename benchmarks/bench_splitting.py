@@ -3,7 +3,7 @@
 For each scene the body model's operators are built once (as :func:`contactlib.solve` builds them) and both
 solvers run on them, interleaved, medians of ``--repeats`` (a solver that does not converge runs once):
 :func:`contactlib.solvers.solve_coupled` (Anderson on the skew part around the symmetric constrained CG) and
-:func:`contactlib.solvers.splitting.solve_splitting`. Printed as a markdown table: the skew ratio
+:func:`contactlib.solvers.nonsymmetric.splitting.solve_splitting`. Printed as a markdown table: the skew ratio
 ``max |Im M| / Re M``, iterations, residual, seconds, the time ratio and the pressures' relative difference.
 
 ``--try-first``: the dispatch of a loss-dominated body (E_inf/E0 = ``--ratio``, nu = 0.5, the 2D surface of

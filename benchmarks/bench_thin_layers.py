@@ -14,9 +14,9 @@ import os
 import numpy as np
 
 import contactlib
-from contactlib.bodies import body_model
-from contactlib.grid import Grid
-from contactlib.materials import Elastic
+from contactlib.model.bodies import body_model
+from contactlib.core.grid import Grid
+from contactlib.model.materials import Elastic
 from contactlib.solvers import solve_periodic_displacement
 
 from .common import timed

@@ -30,7 +30,7 @@ import numpy as np
 
 import contactlib
 from contactlib import surfaces
-from contactlib.hereditary import PronyHistory
+from contactlib.model.hereditary import PronyHistory
 
 from .common import REPO, child_command
 

@@ -21,7 +21,7 @@ from types import SimpleNamespace
 import numpy as np
 
 import contactlib
-from contactlib import fft as cfft
+from contactlib.core import fft as cfft
 
 REPO = Path(__file__).resolve().parent.parent
 """The repository root: the working directory of the scripts' child processes."""
@@ -199,7 +199,7 @@ def nonsymmetric_solve(problem, route: str, **kwargs):
     (semismooth GMRES; ``kwargs`` e.g. ``first_try=True``), ``"splitting"`` (Douglas-Rachford as the dispatch runs
     it), ``"coupled"`` (the fixed point on the skew part) or ``"douglas-rachford"`` (the bare splitting solver on
     :func:`complex_multiplier`, or on ``kwargs["multiplier"]``). Returns the solver's state."""
-    from contactlib.solvers import nonsymmetric_choice
+    from contactlib.solvers.nonsymmetric import choice as nonsymmetric_choice
 
     if route == "dispatch":
         return problem.run()
@@ -212,7 +212,7 @@ def nonsymmetric_solve(problem, route: str, **kwargs):
 
         return solve_coupled(problem.solve_symmetric, problem.body.coupling, problem.values, **problem.solver_args)
     if route == "douglas-rachford":
-        from contactlib.solvers.splitting import solve_splitting
+        from contactlib.solvers.nonsymmetric.splitting import solve_splitting
 
         multiplier = kwargs.get("multiplier")  # computed once by the caller, outside its timing
         multiplier = complex_multiplier(problem) if multiplier is None else multiplier
@@ -224,7 +224,7 @@ def nonsymmetric_solve(problem, route: str, **kwargs):
 
 def complex_multiplier(problem) -> np.ndarray:
     """The Fourier multiplier of a prepared problem's body, its coupling included (complex where it is skew)."""
-    from contactlib.solvers.splitting import fourier_multiplier
+    from contactlib.solvers.nonsymmetric.splitting import fourier_multiplier
 
     return fourier_multiplier(problem.body.compliance, problem.body.coupling)
 
@@ -233,12 +233,12 @@ def iteration_internals(transforms, shape) -> SimpleNamespace:
     """The parts of one Polonsky-Keer iteration, for ``bench_iteration`` to time alone: the transforms' workspace
     and offset, the fused element-wise sweeps chosen for ``shape`` (serial or threaded) and the two compiled passes
     over a spectrum. These are implementation kernels with no public route: timing them alone is the point."""
-    from contactlib import operators
-    from contactlib.solvers import _fused
+    from contactlib.model import operators
+    from contactlib.solvers.symmetric import fused
 
-    sweeps = _fused.select(shape)
+    sweeps = fused.select(shape)
     return SimpleNamespace(
         workspace=transforms.workspace, offset=transforms.offset_spectrum, sweeps=sweeps,
-        threaded=sweeps is _fused.THREADED,
+        threaded=sweeps is fused.THREADED,
         affine_pass=lambda rows: operators.spectrum_pass(operators.affine_spectrum, rows),
         scale_power_pass=lambda rows: operators.spectrum_pass(operators.scale_and_power_sum, rows))

@@ -15,7 +15,7 @@ from dataclasses import dataclass
 import numpy as np
 
 import contactlib
-from contactlib import fft as cfft
+from contactlib.core import fft as cfft
 
 from .common import dist_version
 

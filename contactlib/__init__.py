@@ -22,17 +22,17 @@ Documentation: ``sphinx-build -W -b html docs docs/_build/html`` (user guide per
 
 from . import accuracy, analysis, reference, resolution, surfaces, two_scale
 from ._version import __version__
-from .adhesion import Adhesion
-from .adhesion_curve import adhesion_curve
-from .bodies import Layer
-from .contact import ConvergenceError, solve, solve_tolerances
-from .grid import Grid
-from .materials import Elastic, Viscoelastic
-from .problem import Problem, prepare
-from .reciprocating import solve_reciprocating
+from .model.adhesion import Adhesion
+from .problems.adhesion_curve import adhesion_curve
+from .model.bodies import Layer
+from .problems.contact import ConvergenceError, solve, solve_tolerances
+from .core.grid import Grid
+from .model.materials import Elastic, Viscoelastic
+from .problems.problem import Problem, prepare
+from .problems.reciprocating import solve_reciprocating
 from .resolution import ResolutionWarning
-from .speed_path import predict_pressure, solve_speeds
-from .transient import TimeStepWarning, TransientInterrupted, solve_transient
+from .problems.speed_path import predict_pressure, solve_speeds
+from .problems.transient import TimeStepWarning, TransientInterrupted, solve_transient
 
 __all__ = ["solve", "prepare", "Problem", "Adhesion", "adhesion_curve", "solve_transient", "solve_reciprocating",
            "TransientInterrupted",

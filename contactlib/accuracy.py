@@ -30,8 +30,8 @@ import warnings
 import numpy as np
 import xarray as xr
 
-from . import fft
-from .grid import Grid
+from .core import fft
+from .core.grid import Grid
 from .solvers.state import height_scale
 
 REFERENCE_FACTOR = 4

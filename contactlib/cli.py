@@ -11,8 +11,8 @@ import xarray as xr
 
 from . import surfaces
 from ._version import __version__
-from .bodies import Layer
-from .contact import ConvergenceError, solve
+from .model.bodies import Layer
+from .problems.contact import ConvergenceError, solve
 
 
 def _write(ds: xr.Dataset | xr.DataArray, path: str) -> None:

@@ -27,9 +27,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ._numba import vector_jit
+from .core._numba import vector_jit
 from .errors import ConvergenceError
-from .solvers.cohesive_newton import LAW_WEIGHT
+from .solvers.adhesive.cohesive_newton import LAW_WEIGHT
 
 RESIDUAL_MARGIN = 2.0
 """The complementarity term of the returned fields may exceed ``tol`` by this factor: Polonsky-Keer's returned state
@@ -349,7 +349,7 @@ def check_tension(excess: float, *, tol: float, scale: float) -> Check:
     """Adhesion: tension only where the law allows it. ``excess`` is the tension beyond the law's, summed over the
     points (a cohesive law: beyond its traction at the point's gap; JKR: any tension outside the closed set), and
     ``scale`` the tractions present; within :data:`RESIDUAL_MARGIN` ``tol`` (a cohesive law's ``tol`` is the
-    solve's over ``LAW_WEIGHT``, as its residual's law term weighs it: :mod:`contactlib.solvers.cohesive_newton`).
+    solve's over ``LAW_WEIGHT``, as its residual's law term weighs it: :mod:`contactlib.solvers.adhesive.cohesive_newton`).
 
     Parameters
     ----------
@@ -495,7 +495,7 @@ def contact_checks(state, heights: np.ndarray, *, tol: float, mean_pressure: flo
 
 def adhesive_checks(state, heights: np.ndarray, adhesion, *, tol: float, mean_pressure: float | None = None,
                     penetration: float | None = None) -> list[Check]:
-    """The invariants of an adhesive state (:class:`contactlib.adhesive_contact.AdhesiveState`): the load or
+    """The invariants of an adhesive state (:class:`contactlib.problems.adhesive.AdhesiveState`): the load or
     penetration asked, no interpenetration, the closed set's gap ~0 (from the displacement: the energy method zeroes
     its returned gap there) and tension only where the law allows it. The load's scale is the cohesive residual's,
     ``sigma_0 + |P|`` (JKR: ``|P| + mean|p|``).

@@ -12,7 +12,7 @@ the fit itself, not a bound; :func:`predicted_error` takes the larger of the con
   contact's patches, ``2 A / P`` (area over perimeter, the radius of a disc), in grid spacings
   (:func:`points_per_contact_radius`); rule :data:`CONTACT_FITS` (Hertz's sphere; 1 % asks 25.5).
 * ``process_zone_elements``, a cohesive law: grid elements across its process zone
-  ``pi E* w / (4 sigma_0^2)`` (:func:`contactlib.adhesion.process_zone_length`); rule :data:`COHESIVE_FITS`
+  ``pi E* w / (4 sigma_0^2)`` (:func:`contactlib.model.adhesion.process_zone_length`); rule :data:`COHESIVE_FITS`
   (a Maugis sphere: 1 % asks 4.5 elements; exponential law 1.3), besides the contact's own measure.
 
 Where the prediction exceeds :data:`THRESHOLD` (1 %), the call warns once with :class:`ResolutionWarning` (an
@@ -24,8 +24,8 @@ that target (:func:`contactlib.accuracy.check_resolution`) and this guard only r
 
 A sweep of many solves records the prediction as data instead of printing a warning per point:
 ``with recording() as seen: ...`` keeps the warnings inside and lists every :class:`Resolution` measured;
-:func:`contactlib.sweep.evaluate_point` stores the largest as the point's ``predicted_resolution_error``, and
-:func:`contactlib.sweep.run_grid` logs one line for the whole sweep.
+:func:`contactlib.pipeline.sweep.evaluate_point` stores the largest as the point's ``predicted_resolution_error``, and
+:func:`contactlib.pipeline.sweep.run_grid` logs one line for the whole sweep.
 """
 
 from __future__ import annotations
@@ -39,7 +39,7 @@ import warnings
 import numpy as np
 
 from .accuracy import ROUGH_FITS, SAFETY, AccuracyWarning, grid_points_per_wavelength
-from .adhesion import process_zone_length
+from .model.adhesion import process_zone_length
 
 THRESHOLD = 0.01
 """Predicted relative error (contact area or pressure) above which an entry point warns."""
@@ -560,7 +560,7 @@ def warn(message: str, *, stacklevel: int = 3) -> None:
 def guard(ds, values: np.ndarray, lengths, *, periodic: bool, contact=None, where: str, guarantee: bool = False,
           stacklevel: int = 4) -> Resolution | None:
     """Measure a solved scene (:func:`of_scene`; a cohesive law's process zone from ``ds.attrs``, where
-    :func:`contactlib.adhesion.scene_attrs` put it), record it in ``ds.attrs`` and :func:`report` it.
+    :func:`contactlib.model.adhesion.scene_attrs` put it), record it in ``ds.attrs`` and :func:`report` it.
 
     Parameters
     ----------
@@ -643,14 +643,14 @@ def guard_setup(setup, state, ds, *, where: str, guarantee: bool = False, quiet:
 
 
 def guard_stepper(ds, stepper, *, where: str, stacklevel: int = 5) -> Resolution | None:
-    """:func:`guard` for a time-stepping run (:class:`contactlib.transient.Stepper`), its contact that of the
+    """:func:`guard` for a time-stepping run (:class:`contactlib.problems.transient.Stepper`), its contact that of the
     last step.
 
     Parameters
     ----------
     ds : xarray.Dataset
         The labelled run.
-    stepper : contactlib.transient.Stepper
+    stepper : contactlib.problems.transient.Stepper
         The time stepper.
     where : str
         The entry point's name, for the message.
@@ -676,7 +676,7 @@ def guard_path(ds, setup, *, where: str = "adhesion_curve", stacklevel: int = 5)
     """:func:`guard` for a path of states (:func:`contactlib.adhesion_curve`), which keeps no fields: a
     non-periodic contact is measured as the disc (1D: the strip) of the closed area at the pull-off (the most
     tensile converged state in contact: the path's least resolved state that matters); a cohesive law's process
-    zone as :func:`contactlib.adhesion.scene_attrs` measures it.
+    zone as :func:`contactlib.model.adhesion.scene_attrs` measures it.
 
     Parameters
     ----------

@@ -21,7 +21,7 @@ import numpy as np
 import xarray as xr
 
 from . import surfaces
-from .adhesion import Adhesion
+from .model.adhesion import Adhesion
 from .reference import westergaard
 
 __all__ = ["HARD_CASE_E", "HARD_CASE_NU", "HARD_CASES", "HardCase", "adhesive_rough_scene", "solve_tamaas_adhesive"]

@@ -8,7 +8,8 @@ import pytest
 import xarray as xr
 
 import contactlib
-from contactlib import accuracy, studies, sweep
+from contactlib import accuracy, studies
+from contactlib.pipeline import sweep
 from contactlib.reference import westergaard
 from contactlib.studies import speed_vs_error
 

@@ -11,7 +11,7 @@ import xarray as xr
 import contactlib
 from contactlib import prepare
 from contactlib import Adhesion
-from contactlib.adhesion import CohesiveZoneWarning
+from contactlib.model.adhesion import CohesiveZoneWarning
 from contactlib.reference import adhesive as ref
 from contactlib.reference import westergaard
 
@@ -37,7 +37,7 @@ def cohesive_law(model, zone):
 def test_energy_method_matches_johnson_and_westergaard():
     """The energy balance (eqs 9-11): mean pressure against contact half-width within 1 % of p*, and
     Westergaard's sin^2 without adhesion."""
-    from contactlib.adhesive_contact import family
+    from contactlib.problems.adhesive import family
     h = contactlib.surfaces.wavy(2048, amplitude=AMPLITUDE)
     setup = loaded_problem(h, material=contactlib.Elastic(1.0, 0.0), mean_pressure=None, penetration=0.0,
                            periodic=True, tol=None, max_iter=10, kernel="spectral", layer=None, friction=0.0,
@@ -78,7 +78,7 @@ def test_jkr_sphere_energy_method():
     """The energy balance on discs about the apex of a non-periodic sphere (the range-free JKR limit):
     pull-off -3/2 pi w R within 3 %, and load against contact radius within 3 % of it on the branch
     stable under load control (a > a_c) up to 1.3 a_c, penetration within 3 % of a_c^2 / R."""
-    from contactlib.adhesive_contact import family
+    from contactlib.problems.adhesive import family
     R, w = 1.0, 2.83e-4  # a_c = 0.1 = 26 elements
     h = contactlib.surfaces.paraboloid(128, length=0.5, radius=R)
     setup = loaded_problem(h, material=contactlib.Elastic(1.0, 0.0), mean_pressure=None, penetration=0.0,
@@ -397,11 +397,11 @@ def test_nonconvergence_is_reported():
     """A cohesive solve that cannot converge (one Newton step per stage, a tolerance below round-off)
     raises with its residual and the partial state."""
     h = contactlib.surfaces.wavy(2048, amplitude=AMPLITUDE)
-    import contactlib.solvers.cohesive as cohesive
+    import contactlib.solvers.adhesive.cohesive as cohesive
 
     saved = cohesive.MAX_NEWTON
     try:
-        import contactlib.adhesive_contact as glue
+        import contactlib.problems.adhesive as glue
 
         glue_saved = glue.MAX_NEWTON
         glue.MAX_NEWTON = 1
@@ -451,8 +451,8 @@ def test_cohesive_sweep_matches_the_law(model):
     """The frozen-traction rounds evaluate the law and the residual in one fused sweep: the same traction as
     :meth:`Adhesion.traction` (ramp and tail included, gaps negative to beyond the range) and the same
     residual as the Newton solver's measure with the mean interpenetration."""
-    from contactlib.adhesion import MAUGIS_RAMP
-    from contactlib.solvers import _cohesive_sweeps as sweeps
+    from contactlib.model.adhesion import MAUGIS_RAMP
+    from contactlib.solvers.adhesive import sweeps
 
     law = Adhesion(work=2e-4, range=1e-2, model=model)
     rng = np.random.default_rng(3)
@@ -478,7 +478,7 @@ def test_window_edge_check_ignores_round_off():
     """A non-periodic cohesive state whose edge keeps round-off compression (+5e-56 beside a peak adhesive
     stress of 0.12, as a converged 256^2 JKR sphere state at tol 1e-6 did) is not a contact cut by the
     window; compression there of 1e-6 of the pressure scale still is, and so is any on a non-adhesive one."""
-    from contactlib.inputs import EDGE_RTOL, touches_edge
+    from contactlib.core.inputs import EDGE_RTOL, touches_edge
 
     p = np.zeros((16, 16))
     p[6:10, 6:10], p[5, 5:11] = 0.5, -0.12  # contact, ringed by the law's tension
@@ -515,11 +515,11 @@ def test_loose_tolerance_refuses_a_state_without_its_contact():
 
 def test_diverged_newton_hands_over_at_once_and_its_steps_are_reported(monkeypatch):
     """A Maugis sphere (non-periodic 128^2) at tol 1e-3: the cold Newton solve's third step throws the approach to
-    -3e21. It stops there (:data:`contactlib.solvers.cohesive_newton.DIVERGED`) instead of spending 13 steps and
+    -3e21. It stops there (:data:`contactlib.solvers.adhesive.cohesive_newton.DIVERGED`) instead of spending 13 steps and
     6800 GMRES iterations, returns its best state (the range continuation had started from the last one, at
     residual 1e23, and spent 13 steps a stage there on a rough surface's path), the range continuation converges,
     and the Newton steps and GMRES iterations reported are those of every solve, the failed one included."""
-    import contactlib.solvers.cohesive_newton as cohesive_newton
+    import contactlib.solvers.adhesive.cohesive_newton as cohesive_newton
 
     solves = []
     original = cohesive_newton.CohesiveNewton.__call__
@@ -531,7 +531,7 @@ def test_diverged_newton_hands_over_at_once_and_its_steps_are_reported(monkeypat
 
     monkeypatch.setattr(cohesive_newton.CohesiveNewton, "__call__", counted)
     # the stalled frozen traction hands over to Newton at once: its continuation in the range would converge here
-    monkeypatch.setattr(contactlib.solvers.cohesive, "FROZEN_RANGES", ())
+    monkeypatch.setattr(contactlib.solvers.adhesive.cohesive, "FROZEN_RANGES", ())
     work = 2.83e-4
     peak = 0.5 * (np.pi * work * (4 / 3) ** 2) ** (1 / 3)
     h = contactlib.surfaces.paraboloid(128, length=0.45, radius=1.0)
@@ -612,7 +612,7 @@ def test_a_step_no_start_converges_is_reached_through_midpoints():
     loading step from 0 to 0.5 rms heights failed from the warm, the non-adhesive and the open start (residual
     5.3e-3), leaving a hole in the path and NaN pull-off scalars. Through the midpoint 0.25 it converges; on the
     loading branch it holds less contact and less tension than on the unloading branch at the same penetration."""
-    from contactlib.materials import contact_modulus
+    from contactlib.model.materials import contact_modulus
     from contactlib.studies._common import rough_surface
     from contactlib.studies.adhesive_rough import cohesive_law
 

@@ -1,4 +1,4 @@
-"""The frozen-traction cohesive rounds inside one Polonsky-Keer solve (``contactlib.solvers.cohesive_rounds``):
+"""The frozen-traction cohesive rounds inside one Polonsky-Keer solve (``contactlib.solvers.adhesive.cohesive_rounds``):
 the moved heights against a direct convolution, the answer against the rounds that restart the solve each time
 and against the semi-smooth Newton solver (an independent method), under load and displacement control."""
 
@@ -6,12 +6,12 @@ import numpy as np
 import pytest
 
 import contactlib
-import contactlib.solvers.cohesive as cohesive
-import contactlib.solvers.cohesive_newton as cohesive_newton
-from contactlib.grid import Grid
-from contactlib.inputs import grid_of
-from contactlib.operators import Compliance
-from contactlib.solvers.cohesive import solve_cohesive
+import contactlib.solvers.adhesive.cohesive as cohesive
+import contactlib.solvers.adhesive.cohesive_newton as cohesive_newton
+from contactlib.core.grid import Grid
+from contactlib.core.inputs import grid_of
+from contactlib.model.operators import Compliance
+from contactlib.solvers.adhesive.cohesive import solve_cohesive
 
 WORK, RANGE = 4e-5, 4e-3  # sigma_0 = 0.01 (exponential): a process zone of a few elements on 64^2
 

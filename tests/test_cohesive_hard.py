@@ -1,6 +1,6 @@
 """Cohesive spheres: load control returns the load asked on every route of the cohesive solver (issue 38, finding 1).
 
-The residual of both methods (:mod:`contactlib.solvers.cohesive`) holds the load error ``|mean(p) - P| / (sigma_0 +
+The residual of both methods (:mod:`contactlib.solvers.adhesive.cohesive`) holds the load error ``|mean(p) - P| / (sigma_0 +
 |P|)``, so a converged state carries the load within ``tol (sigma_0 + |P|)``; past pull-off there is no equilibrium
 and the solve raises :class:`contactlib.ConvergenceError`. Checked on a Maugis and an exponential sphere (lambda = 2,
 non-periodic 128^2) from near pull-off to a compressive load of 4 ``|P_c|``, on the frozen-traction route (lambda = 1),
@@ -13,7 +13,7 @@ import numpy as np
 import pytest
 
 import contactlib
-import contactlib.solvers.cohesive as cohesive
+import contactlib.solvers.adhesive.cohesive as cohesive
 
 E, NU = 1.0, 0.5
 E_STAR = E / (1 - NU**2)

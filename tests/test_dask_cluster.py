@@ -12,8 +12,10 @@ from pathlib import Path
 import pytest
 import xarray as xr
 
-from contactlib import studies, sweep
-from contactlib.cluster import open_client, shared_address
+from contactlib import studies
+
+from contactlib.pipeline import sweep
+from contactlib.pipeline.cluster import open_client, shared_address
 
 distributed = pytest.importorskip("distributed")
 
@@ -96,12 +98,12 @@ def test_sweep_survives_a_killed_worker(cluster, tmp_path):
 
 
 def test_shared_cluster_serves_clients_and_leaves_nothing_behind(tmp_path):
-    """`python -m contactlib.cluster` (the workflow's shared cluster): its address reaches a client, a sweep runs
+    """`python -m contactlib.pipeline.cluster` (the workflow's shared cluster): its address reaches a client, a sweep runs
     on it, and SIGTERM stops it and removes its scheduler file; a client falls back when no server is alive."""
     scheduler_file = tmp_path / "dask.json"
     with open(tmp_path / "server.log", "w") as log:
         env = dict(os.environ, PYTHONPATH=f"{ROOT}{os.pathsep}{os.environ.get('PYTHONPATH', '')}")
-        server = subprocess.Popen([sys.executable, "-m", "contactlib.cluster", "--scheduler-file", str(scheduler_file),
+        server = subprocess.Popen([sys.executable, "-m", "contactlib.pipeline.cluster", "--scheduler-file", str(scheduler_file),
                                    "--n-workers", "2"], stdout=log, stderr=subprocess.STDOUT, env=env,
                                   start_new_session=True)
     try:

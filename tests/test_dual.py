@@ -1,12 +1,12 @@
-"""Periodic displacement control, solved as its dual (contactlib.solvers.dual), against the primal
+"""Periodic displacement control, solved as its dual (contactlib.solvers.symmetric.dual), against the primal
 iteration and against load control."""
 
 import numpy as np
 import pytest
 
 import contactlib
-from contactlib.grid import Grid
-from contactlib.operators import Compliance, Stiffness
+from contactlib.core.grid import Grid
+from contactlib.model.operators import Compliance, Stiffness
 from contactlib.solvers import contact_residual, solve_periodic_displacement, solve_polonsky_keer
 from contactlib.solvers.state import height_scale
 

@@ -109,7 +109,7 @@ def test_round_off_floor_stalls_early_instead_of_running_to_max_iter(heights):
     """tol 1e-17 is below the round-off floor (~1e-15 here): the solve must say so, not spin."""
     with pytest.raises(contactlib.ConvergenceError, match="stalled") as info:
         contactlib.solve(heights, E=1.0, nu=0.3, mean_pressure=0.01, tol=1e-17, max_iter=1_000_000)
-    from contactlib.solvers.ccg import STALL_ITERATIONS
+    from contactlib.solvers.symmetric.ccg import STALL_ITERATIONS
     assert int(info.value.dataset.iterations) < 3 * STALL_ITERATIONS
     assert 0 < info.value.residual < 1e-12
 

@@ -174,7 +174,7 @@ def test_strong_coupling_converges_in_2d():
 def test_strong_coupling_split_gives_the_same_answer(monkeypatch):
     """Where both splits converge (q0 h = 0.3, max |W|/K = 4.9, 49 % contact), K + |W| with W - |W| and
     K with W reach the same pressure: same problem, two iterations."""
-    from contactlib import bodies
+    from contactlib.model import bodies
 
     shifted = contactlib.solve(**_strong_coupling_scene(0.3, 0.1))
     monkeypatch.setattr(bodies, "SHIFT_ABOVE", np.inf)
@@ -194,8 +194,8 @@ def test_thin_remote_pressure_layer_matches_its_dual(q0h):
     n = 4096
     h = contactlib.surfaces.self_affine(n, hurst=0.8, q_roll=2, q_cutoff=n // 8, rms_slope=0.1, seed=4, dim=1)
     layer = contactlib.Layer(q0h / (2 * np.pi), "remote_pressure")
-    from contactlib.bodies import body_model
-    from contactlib.grid import Grid
+    from contactlib.model.bodies import body_model
+    from contactlib.core.grid import Grid
     from contactlib.solvers import solve_periodic_displacement
 
     load = contactlib.solve(h, E=1.0, nu=0.3, mean_pressure=0.01, layer=layer, tol=1e-10)

@@ -7,8 +7,9 @@ import numpy as np
 import pytest
 
 import contactlib
-from contactlib import adhesive_contact, invariants, problem, surfaces, transient
-from contactlib.hereditary import PronyHistory
+from contactlib.problems import adhesive as adhesive_contact, problem, transient
+from contactlib import invariants, surfaces
+from contactlib.model.hereditary import PronyHistory
 from contactlib.invariants import InvariantError
 
 CONTACT = "load, sign, gap, complementarity, gap_definition"

@@ -115,7 +115,7 @@ def test_a_contact_beyond_the_family_is_refused(monkeypatch):
         contactlib.solve(h, E=1.0, nu=0.5, adhesion=law, periodic=False, penetration=0.2)
     with pytest.raises(ValueError, match=r"mean_pressures .*larger window"):
         contactlib.adhesion_curve(h, E=1.0, nu=0.5, adhesion=law, periodic=False, mean_pressures=[0.0, 0.5])
-    import contactlib.solvers.energy as energy
+    import contactlib.solvers.adhesive.energy as energy
 
     monkeypatch.setattr(energy, "MAX_UNKNOWNS", 20)  # the 32^2 window's disc has 112 orbits
     ok = contactlib.solve(h, E=1.0, nu=0.5, adhesion=law, periodic=False, penetration=1e-3)
@@ -168,8 +168,8 @@ def test_family_by_symmetry_orbits_is_the_dense_family(case):
     compliance (an eighth of the unknowns on a square window, a quarter on a periodic rectangle, which has no
     quarter turn, a half on a profile) has the coefficients and tractions of the dense factorisation, to
     round-off."""
-    from contactlib.adhesive_contact import family
-    from contactlib.solvers.energy import growth_order
+    from contactlib.problems.adhesive import family
+    from contactlib.solvers.adhesive.energy import growth_order
 
     if case == "sphere":
         setup, share = _scene(contactlib.surfaces.paraboloid(40, length=1.0, radius=1.0), periodic=False), 8

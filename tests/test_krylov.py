@@ -7,8 +7,10 @@ import pytest
 
 import contactlib
 from contactlib import Elastic, Layer, Viscoelastic, prepare
-from contactlib.solvers import krylov, nonsymmetric_choice, solve_coupled
-from contactlib.solvers.splitting import fourier_multiplier, solve_splitting
+from contactlib.solvers import krylov
+from contactlib.solvers.nonsymmetric import choice as nonsymmetric_choice
+from contactlib.solvers import solve_coupled
+from contactlib.solvers.nonsymmetric.splitting import fourier_multiplier, solve_splitting
 
 
 def loaded_problem(h, *, mean_pressure, penetration, initial_pressure=None, **scene):
@@ -146,7 +148,8 @@ def test_loose_tolerance_ends_on_the_residual(tol, monkeypatch):
     the fixed point (27 set updates). The loop now stops once the residual is within tol and the pressure is its own
     displacement's (at 1e-4 with points still to join, at 1e-3 the negative part clipped and the state checked):
     4-5 set updates, the returned fields consistent, the answer within tol's reach of a tight one."""
-    from contactlib.solvers import contact_residual, semismooth
+    from contactlib.solvers import contact_residual
+    from contactlib.solvers.symmetric import semismooth
     from contactlib.solvers.state import height_scale
 
     clipped = []

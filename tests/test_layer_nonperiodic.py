@@ -32,7 +32,7 @@ def test_sphere_on_a_confined_layer_matches_a_wide_periodic_window(nu, thickness
     padded, wide, reference = _against_wide_periodic(64, 2, nu, thickness, 1e-3)
     pressure = padded.pressure.values
     assert padded.attrs["body"] == "layer"
-    assert padded.attrs["layer_window_thicknesses"] >= contactlib.bodies.LAYER_WINDOW
+    assert padded.attrs["layer_window_thicknesses"] >= contactlib.model.bodies.LAYER_WINDOW
     assert 0.01 < float(padded.contact_area) < 0.2  # a contact of 40-800 elements, clear of the window's edge
     assert np.abs(pressure - reference).max() <= 2e-5 * pressure.max()
     assert float(padded.penetration) == pytest.approx(float(wide.penetration), rel=1e-5)

@@ -5,9 +5,9 @@ import numpy as np
 import pytest
 
 import contactlib
-from contactlib.bodies import body_model
-from contactlib.grid import Grid
-from contactlib.materials import Elastic
+from contactlib.model.bodies import body_model
+from contactlib.core.grid import Grid
+from contactlib.model.materials import Elastic
 from contactlib.solvers import solve_active_set
 from dense_reference import dense_load_control
 
@@ -146,7 +146,7 @@ def test_plate_penetration_control_converges_where_the_dual_stalls():
 def test_coarse_space_is_reused_on_a_repeated_set_only():
     """A frictional plate's outer loop returns to the set it left: the two-level preconditioner built there is
     reused (same object); another set gets its own, and a reused one acts as a fresh build would."""
-    from contactlib.solvers.coarse import TwoLevel, soft_modes, two_level
+    from contactlib.solvers.symmetric.coarse import TwoLevel, soft_modes, two_level
 
     h = _scene(256, 1)
     body = body_model(Grid(h.shape, (1.0,)), material=Elastic(1.0, 0.3), layer=_layer(), friction=0.0,
@@ -183,8 +183,8 @@ def test_complex_two_level_solves_the_soft_waves_exactly():
     random 30 % set): ``A P`` maps the coarse responses ``A Z`` to themselves (to round-off), its spectrum on the
     centred fields has a positive real part (measured >= 0.98: GMRES cannot stall), and its modulus is below 50
     where the plain Fourier preconditioner leaves the plate's outliers (3e5)."""
-    from contactlib.solvers import splitting
-    from contactlib.solvers.coarse import PlateCompliance, soft_modes
+    from contactlib.solvers.nonsymmetric import splitting
+    from contactlib.solvers.symmetric.coarse import PlateCompliance, soft_modes
     from contactlib.solvers.krylov import ComplexCompliance
 
     n = 1024
@@ -221,7 +221,7 @@ def test_plate_loose_tolerance_costs_no_more_than_a_tight_one(friction):
     """At tol 1e-3 the changed sets were solved only to tol / 2 (GMRES) or tol / 16 (CG): the 0.2 % of the load
     left as negative pressure displaces a plate by several rms heights, so the sets cycled (with friction 20 set
     updates, then the fixed point on the skew part; frictionless 139 CG iterations against 124 at tol 1e-8). With
-    :data:`contactlib.solvers.coarse.PLATE_SET_FLOOR` the loop converges itself, in no more iterations than at
+    :data:`contactlib.solvers.symmetric.coarse.PLATE_SET_FLOOR` the loop converges itself, in no more iterations than at
     tol 1e-8, to the tight answer within what tol 1e-3 allows."""
     h = contactlib.surfaces.self_affine(4096, hurst=0.8, q_roll=1, q_cutoff=512, rms_slope=0.1, seed=1, dim=1)
     answers = {tol: contactlib.solve(h, E=1.0, nu=0.3, mean_pressure=0.02, friction=friction, layer=_layer(), tol=tol)

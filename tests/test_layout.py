@@ -90,7 +90,7 @@ def test_no_module_imports_another_modules_private_name():
 
 def test_the_private_import_check_sees_one():
     """The check itself: a module that imports a private name, or reads one off a module, is found."""
-    probe = "from .contact import _setup\nfrom . import _version, fft\nfrom .solvers import _fused\nfft._plan\n"
+    probe = "from .problems.contact import _setup\nfrom . import _version\nfrom .core import _numba, fft\nfft._plan\n"
     found = private_imports([(PACKAGE / "probe.py", probe)])
     assert found == [("probe.py", "_setup"), ("probe.py", "fft._plan")]  # private submodules of a package pass
 

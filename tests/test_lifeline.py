@@ -1,4 +1,4 @@
-"""contactlib.lifeline: a process ends when its parent is SIGKILLed, by prctl (Linux) or by the watchdog alone."""
+"""contactlib.pipeline.lifeline: a process ends when its parent is SIGKILLed, by prctl (Linux) or by the watchdog alone."""
 
 import os
 import signal
@@ -11,7 +11,7 @@ import pytest
 
 CHILD = """
 import sys, time
-import contactlib.lifeline as lifeline
+import contactlib.pipeline.lifeline as lifeline
 if sys.argv[1] == "watchdog":
     lifeline._parent_death_signal = lambda sig: False  # as on a platform without prctl
 print(lifeline.exit_with_parent(), flush=True)

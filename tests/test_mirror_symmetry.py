@@ -15,7 +15,7 @@ import numpy as np
 import pytest
 
 import contactlib
-from contactlib.grid import Grid
+from contactlib.core.grid import Grid
 from contactlib.kernels.tensor import surface_green_tensor
 from contactlib.kernels.viscoelastic import steady_sliding_factor
 

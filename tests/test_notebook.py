@@ -9,7 +9,9 @@ import pytest
 import yaml
 from nbclient import NotebookClient
 
-from contactlib import studies, sweep
+from contactlib import studies
+
+from contactlib.pipeline import sweep
 
 ROOT = Path(__file__).resolve().parents[1]
 

@@ -3,8 +3,8 @@
 import numpy as np
 import pytest
 
-from contactlib.grid import Grid
-from contactlib.operators import Compliance
+from contactlib.core.grid import Grid
+from contactlib.model.operators import Compliance
 
 
 @pytest.mark.parametrize("periodic", [True, False])

@@ -3,7 +3,7 @@ solver (:func:`contactlib.testing.solve_tamaas_adhesive`): a 2D periodic rough s
 same work, range and mean pressure. tamaas is in the ``test`` extra, never a runtime dependency.
 
 The Maugis law is not compared here: contactlib's is the Dugdale step as a narrow ramp
-(:data:`contactlib.adhesion.MAUGIS_RAMP`), tamaas' the bare step, so their answers differ by more than
+(:data:`contactlib.model.adhesion.MAUGIS_RAMP`), tamaas' the bare step, so their answers differ by more than
 1e-3 by design (the benchmark prints both)."""
 
 import numpy as np

@@ -8,7 +8,8 @@ import numpy as np
 import pytest
 
 import contactlib
-from contactlib import Adhesion, resolution, sweep
+from contactlib import Adhesion, resolution
+from contactlib.pipeline import sweep
 from contactlib.reference import hertz
 
 

@@ -121,8 +121,8 @@ def test_negative_penetration_is_no_contact(material, rough64):
 
 
 def _compliance_and_heights(dim, n):
-    from contactlib.grid import Grid
-    from contactlib.operators import Compliance
+    from contactlib.core.grid import Grid
+    from contactlib.model.operators import Compliance
 
     h = contactlib.surfaces.self_affine(n, hurst=0.8, q_roll=4, q_cutoff=n // 8, rms_slope=0.1, seed=1,
                                         dim=dim).values
@@ -150,7 +150,7 @@ def test_kept_directions_converge_where_restarts_stall():
     the default rule converges, and the dual solver (displacement control, another formulation) at
     its penetration gives back the load and the pressure field."""
     from contactlib.solvers import solve_polonsky_keer
-    from contactlib.solvers.dual import solve_periodic_displacement
+    from contactlib.solvers.symmetric.dual import solve_periodic_displacement
 
     op, h = _compliance_and_heights(1, 16384)
     restarted = solve_polonsky_keer(op, h, mean_pressure=0.05, tol=1e-10, restart_fraction=0.0)

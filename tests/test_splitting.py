@@ -9,10 +9,10 @@ import pytest
 import contactlib
 from contactlib import Elastic, Viscoelastic
 from contactlib import prepare
-from contactlib.solvers import nonsymmetric_choice
+from contactlib.solvers.nonsymmetric import choice as nonsymmetric_choice
 from contactlib.reference import viscoelastic_profile as vp
 from contactlib.solvers import solve_coupled
-from contactlib.solvers.splitting import fourier_multiplier, loss_dominated, solve_splitting
+from contactlib.solvers.nonsymmetric.splitting import fourier_multiplier, loss_dominated, solve_splitting
 from contactlib.solvers.state import contact_residual, height_scale
 
 
@@ -198,7 +198,7 @@ def test_dispatch_rule():
 def test_stalled_coupled_solve_falls_back(monkeypatch):
     """With the direct dispatch switched off (and the semismooth-GMRES loop and finish, tested elsewhere), the coupled
     solver stalls on a loss-dominated scene and solve falls back to the splitting, which converges."""
-    from contactlib.solvers import splitting
+    from contactlib.solvers.nonsymmetric import splitting
 
     monkeypatch.setattr(splitting, "SPLIT_ABOVE", np.inf)
     monkeypatch.setattr(nonsymmetric_choice, "krylov_applies", lambda problem: False)
@@ -257,7 +257,7 @@ def test_growth_monitor_stops_a_diverging_loop_only():
 def test_finish_is_not_tried_twice_from_one_iterate(monkeypatch, max_iter):
     """``finish`` sees each iterate at most once: the last try, from the best iterate, is skipped when the loop
     already tried that iterate (it had run the same failing Newton loop twice when the best came at 1000 or 2000)."""
-    from contactlib.solvers import splitting
+    from contactlib.solvers.nonsymmetric import splitting
     from contactlib.solvers.state import ContactState
 
     monkeypatch.setattr(splitting, "FINISH_BELOW", np.inf)
@@ -278,7 +278,7 @@ def test_finish_is_not_tried_twice_from_one_iterate(monkeypatch, max_iter):
 def test_a_finish_from_the_best_iterate_counts_every_iteration(monkeypatch):
     """The last try of ``finish`` starts from the best iterate, which may be far behind the last one: the iterations
     reported are all those run (they had counted up to the best iterate only)."""
-    from contactlib.solvers import splitting
+    from contactlib.solvers.nonsymmetric import splitting
 
     monkeypatch.setattr(splitting, "FINISH_BELOW", np.inf)
     monkeypatch.setattr(splitting, "FINISH_FIRST", 10**9)  # no try in the loop: only the last one

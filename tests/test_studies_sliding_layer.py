@@ -7,7 +7,8 @@ import numpy as np
 import pytest
 
 import contactlib
-from contactlib import studies, sweep
+from contactlib import studies
+from contactlib.pipeline import sweep
 from contactlib.studies._sliding_layer import sliding_layer_scene
 
 PROFILE = dict(n=256, hurst=0.8, q_low=1, q_roll=1, q_cutoff=32, rms_slope=0.13, layer_base="confined")

@@ -1,4 +1,4 @@
-"""contactlib.sweep: failure status, checkpoint/resume after interruption, labels, atomic writes, reproducibility."""
+"""contactlib.pipeline.sweep: failure status, checkpoint/resume after interruption, labels, atomic writes, reproducibility."""
 
 import functools
 import json
@@ -15,7 +15,8 @@ import pytest
 import xarray as xr
 
 import contactlib
-from contactlib import studies, sweep
+from contactlib import studies
+from contactlib.pipeline import sweep
 
 CONSTANTS = dict(q_low=1, q_roll=2, q_cutoff=16, rms_slope=0.1, E=1.0, nu=0.5, tol=1e-8, max_iter=10000,
                  kernel="spectral")
@@ -127,7 +128,8 @@ def test_killed_process_resumes_and_leaves_no_partial_netcdf(tmp_path, reference
     checkpoints, final = tmp_path / "ckpt", tmp_path / "area_load.nc"
     script = textwrap.dedent(f"""
         import functools, time
-        from contactlib import studies, sweep
+        from contactlib import studies
+        from contactlib.pipeline import sweep
         def slow(**kw):
             time.sleep(0.3)
             return studies.area_load_point(**kw)

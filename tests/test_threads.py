@@ -6,10 +6,10 @@ import numpy as np
 import pytest
 
 import contactlib
-from contactlib import fft
-from contactlib import _numba
-from contactlib._numba import PARALLEL_MIN_SIZE, parallel_sweeps
-from contactlib.operators import (
+from contactlib.core import fft
+from contactlib.core import _numba
+from contactlib.core._numba import PARALLEL_MIN_SIZE, parallel_sweeps
+from contactlib.model.operators import (
     affine_spectrum,
     scale_and_power_sum,
     _scale_spectrum,
@@ -19,7 +19,7 @@ from contactlib.operators import (
     _threaded_weighted_power_sum,
     _weighted_power_sum,
 )
-from contactlib.solvers import _fused as fz
+from contactlib.solvers.symmetric import fused as fz
 from contactlib.surfaces import self_affine
 
 MAX_THREADS = min(2, numba.config.NUMBA_NUM_THREADS)
@@ -193,7 +193,7 @@ def test_fftw_openmp_team_follows_the_thread_setting():
     import sys
 
     script = (
-        "from contactlib import fft\n"
+        "from contactlib.core import fft\n"
         "fft.set_fft_options(threads=2)\n"
         "fft.get_fft((64, 64))\n"
         "runtimes = fft._openmp_runtimes()\n"

@@ -10,7 +10,7 @@ import pytest
 
 import contactlib
 from contactlib import surfaces
-from contactlib.hereditary import PronyHistory
+from contactlib.model.hereditary import PronyHistory
 
 NU = 0.3
 

@@ -8,8 +8,8 @@ import xarray as xr
 
 import contactlib
 import contactlib.two_scale as ts
-from contactlib.grid import Grid
-from contactlib.operators import Compliance
+from contactlib.core.grid import Grid
+from contactlib.model.operators import Compliance
 from contactlib.reference import hertz
 from contactlib.two_scale import interaction as interaction_module
 
@@ -206,7 +206,7 @@ def test_labels_and_provenance(few, tmp_path):
 def test_direct_dataset_equals_the_public_constructor():
     """The labels' direct construction (no merge) gives the Dataset xarray's constructor gives: variables, coords,
     indexes and attrs; a conflict of dimensions is still refused."""
-    from contactlib.labels import dataset
+    from contactlib.core.labels import dataset
 
     rng = np.random.default_rng(1)
     coords = {"asperity": ("asperity", np.arange(5), {"units": "1", "long_name": "asperity"}),

@@ -7,7 +7,7 @@ import pytest
 
 import contactlib
 from contactlib import Elastic, Layer, Viscoelastic
-from contactlib.grid import Grid
+from contactlib.core.grid import Grid
 from contactlib.kernels.elastic import halfspace_love_multiplier
 from contactlib.kernels.viscoelastic import modulus_deviation, real_where_self_conjugate, sliding_factor
 from contactlib.reference import viscoelastic_profile as vp

@@ -8,8 +8,8 @@ import pytest
 
 import contactlib
 from contactlib import Layer, Viscoelastic
-from contactlib.bodies import MINOR_FLOOR, body_model, order_two_minors
-from contactlib.grid import Grid
+from contactlib.model.bodies import MINOR_FLOOR, body_model, order_two_minors
+from contactlib.core.grid import Grid
 from contactlib.kernels.tensor import surface_green_tensor
 from contactlib.kernels.viscoelastic import steady_sliding_factor
 from dense_reference import dense_load_control

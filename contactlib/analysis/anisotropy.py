@@ -10,7 +10,7 @@ from __future__ import annotations
 import numpy as np
 import xarray as xr
 
-from ..inputs import check_whole
+from ..core.inputs import check_whole
 from .statistics import half_spectrum_weights, values_and_grid
 
 

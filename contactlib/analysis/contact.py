@@ -8,7 +8,7 @@ import numbers
 import numpy as np
 from scipy import ndimage
 
-from ..inputs import real_values
+from ..core.inputs import real_values
 
 
 def _pressure(pressure) -> np.ndarray:

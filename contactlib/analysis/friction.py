@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..inputs import real_values
+from ..core.inputs import real_values
 
 
 def directional_slope(field: np.ndarray, *, lengths, direction: float = 0.0, periodic: bool = True) -> np.ndarray:

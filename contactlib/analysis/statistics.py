@@ -9,9 +9,9 @@ from __future__ import annotations
 import numpy as np
 import xarray as xr
 
-from ..grid import Grid
-from ..inputs import window_of, check_whole, real_values
-from ..labels import attrs_for
+from ..core.grid import Grid
+from ..core.inputs import window_of, check_whole, real_values
+from ..core.labels import attrs_for
 
 
 def values_and_grid(field, length=None) -> tuple[np.ndarray, Grid]:

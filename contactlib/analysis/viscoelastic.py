@@ -22,7 +22,7 @@ from __future__ import annotations
 import numpy as np
 import scipy.fft
 
-from ..grid import Grid
+from ..core.grid import Grid
 from ..kernels.nyquist import even_on_nyquist, nyquist_planes, wavevector_along
 from ..kernels.tensor import surface_green_tensor
 from .statistics import half_spectrum_weights, values_and_grid

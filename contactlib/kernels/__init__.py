@@ -6,12 +6,8 @@ a zero-padded periodic box. New bodies (finite layers, viscoelastic, Green's ten
 add functions here with the same shape of signature.
 """
 
-from .elastic import (
-    halfspace_love_influence,
-    halfspace_love_multiplier,
-    halfspace_point_influence,
-    halfspace_spectral_multiplier,
-)
+from .elastic import (halfspace_love_influence, halfspace_love_multiplier, halfspace_point_influence,
+    halfspace_spectral_multiplier)
 
 __all__ = [
     "halfspace_spectral_multiplier",

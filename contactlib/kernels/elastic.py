@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..grid import Grid
+from ..core.grid import Grid
 from .nyquist import even_on_nyquist
 
 #: image orders summed per axis by the periodic Love multiplier (alternating tail: error ~ M^-2)

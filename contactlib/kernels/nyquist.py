@@ -31,7 +31,7 @@ import itertools
 
 import numpy as np
 
-from ..grid import Grid
+from ..core.grid import Grid
 
 
 def nyquist_axes(grid: Grid) -> tuple[int, ...]:

@@ -15,7 +15,7 @@ real space: a Coulomb traction ``mu p s`` makes the normal operator ``Czz - i mu
 non-symmetric, with the symmetric part ``Czz``.
 
 Every array here is an unnormalised transfer function (displacement spectrum per traction
-spectrum) [length/pressure]; :func:`contactlib.fft.convolution_multiplier` turns it into a
+spectrum) [length/pressure]; :func:`contactlib.core.fft.convolution_multiplier` turns it into a
 multiplier.
 """
 
@@ -25,7 +25,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..grid import Grid
+from ..core.grid import Grid
 from .elastic import padded_offsets
 from .layer import halfspace_factors, layer_factors, zero_mode_compliance
 from .nyquist import even_on_nyquist, unit_projections

@@ -12,7 +12,7 @@ of the elastic body at modulus ``E0`` is multiplied by (seed 2, eqs 23 and 25)::
 with ``E*`` the material's complex modulus (:meth:`contactlib.Viscoelastic.complex_modulus`). Its real
 part is even in ``q``: the symmetric, positive-definite part of the normal operator; its imaginary part
 is odd: a skew part, which the coupled solver takes as it takes friction's
-(:mod:`contactlib.solvers.coupled`). Sign check: a point ahead of the slider (it arrives from
+(:mod:`contactlib.solvers.nonsymmetric.coupled`). Sign check: a point ahead of the slider (it arrives from
 ``+V``) has not been loaded yet, so there the body is glassy; behind it the material is still
 recovering. The pressure leans to the leading edge and the contact patches shrink at the trailing edge
 (tests/test_viscoelastic.py).
@@ -28,7 +28,7 @@ from functools import partial
 import numba
 import numpy as np
 
-from ..grid import Grid
+from ..core.grid import Grid
 from .nyquist import even_on_nyquist
 
 
@@ -117,7 +117,7 @@ def _self_conjugate(grid: Grid) -> list[tuple[int, ...]]:
 def modulus_deviation(grid: Grid, material, velocity, reference: float) -> float:
     """``max |E*(q . V) - reference| / reference`` over the grid's non-zero wavevectors [1]: how far the
     scene is from an elastic body of modulus ``reference`` (the reduction rule of
-    :func:`contactlib.bodies.body_model` compares the complex modulus, not its magnitude: the loss
+    :func:`contactlib.model.bodies.body_model` compares the complex modulus, not its magnitude: the loss
     modulus, which makes the friction, moves at first order in ``q V``)."""
     return modulus_deviations(grid, material, velocity, (reference,))[0]
 

@@ -26,7 +26,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .._numba import jit as _jit
+from ..core._numba import jit as _jit
 from .state import dot
 
 

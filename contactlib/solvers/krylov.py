@@ -23,8 +23,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from .. import fft
-from . import _krylov_sweeps as sweeps
+from ..core import fft
+from . import krylov_sweeps as sweeps
 from .recycle import RecycledSpace
 from .state import dot
 

@@ -31,7 +31,7 @@ import numpy as np
 import xarray as xr
 
 from .. import accuracy
-from ..sweep import SWEEP_VARIABLES
+from ..pipeline.sweep import SWEEP_VARIABLES
 from ._common import COMMON_VARIABLES, rough_surface
 from .anisotropy import anisotropy_point
 from .area_load import PERSSON_KAPPA, PUBLISHED_KAPPA_RANGE, area_load_point
@@ -39,7 +39,7 @@ from .fig5_friction_area import friction_area_point
 from .fig6a_interlocking import interlocking_point
 from .measured_area_load import measured_area_load_point
 from .speed_vs_error import (REFERENCE_FLOOR, REFERENCE_MAX_ITER, SCENES, rough_master, rough_reference,
-                             speed_error_point, speed_error_shapes)
+    speed_error_point, speed_error_shapes)
 from .two_scale import two_scale_point
 from .validation import validation_point
 

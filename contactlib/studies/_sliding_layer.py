@@ -16,9 +16,9 @@ import math
 import xarray as xr
 
 from .. import analysis, surfaces
-from ..bodies import Layer
-from ..labels import attrs_for
-from ..materials import contact_modulus
+from ..model.bodies import Layer
+from ..core.labels import attrs_for
+from ..model.materials import contact_modulus
 
 SCENE_VARIABLES: dict[str, dict[str, str]] = {
     "friction": {"units": "1", "long_name": "Coulomb friction coefficient mu_c"},

@@ -11,8 +11,8 @@ from __future__ import annotations
 
 import math
 
-from ..labels import attrs_for
-from ..materials import Viscoelastic, contact_modulus
+from ..core.labels import attrs_for
+from ..model.materials import Viscoelastic, contact_modulus
 
 SCENE_VARIABLES: dict[str, dict[str, str]] = {
     "zeta": {"units": "1", "long_name": "dimensionless sliding speed V tau q0"},

@@ -22,9 +22,9 @@ import math
 
 import numpy as np
 
-from ..adhesion import Adhesion
-from ..adhesion_curve import adhesion_curve
-from ..materials import contact_modulus
+from ..model.adhesion import Adhesion
+from ..problems.adhesion_curve import adhesion_curve
+from ..model.materials import contact_modulus
 from ._common import rough_surface
 
 VARIABLES: dict[str, dict[str, str]] = {

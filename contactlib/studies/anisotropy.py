@@ -4,8 +4,8 @@ against that of its contact pressure."""
 from __future__ import annotations
 
 from .. import analysis
-from ..contact import solve
-from ..materials import contact_modulus
+from ..problems.contact import solve
+from ..model.materials import contact_modulus
 from ._common import anisotropy_summary, rough_surface
 
 VARIABLES: dict[str, dict[str, str]] = {

@@ -6,8 +6,8 @@ from __future__ import annotations
 import math
 
 from .. import analysis
-from ..contact import solve
-from ..materials import contact_modulus
+from ..problems.contact import solve
+from ..model.materials import contact_modulus
 from ._common import rough_surface
 
 PERSSON_KAPPA = math.sqrt(8 / math.pi)

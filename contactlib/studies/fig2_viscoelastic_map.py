@@ -10,7 +10,7 @@ Parameters of the seed: 64 scales, ``lambda = L = 0.01 m``, ``E_inf = 1e8 Pa``, 
 from __future__ import annotations
 
 from .. import analysis, surfaces
-from ..contact import solve
+from ..problems.contact import solve
 from ._viscoelastic_scene import SCENE_VARIABLES, material, model_flag
 
 VARIABLES: dict[str, dict[str, str]] = {

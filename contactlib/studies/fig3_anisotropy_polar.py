@@ -10,7 +10,7 @@ principal direction ``theta_d``. The seed reports ``gamma_s = 1``, ``gamma_d = 0
 from __future__ import annotations
 
 from .. import surfaces
-from ..contact import solve
+from ..problems.contact import solve
 from ._common import anisotropy_summary
 from ._viscoelastic_scene import SCENE_VARIABLES, material
 

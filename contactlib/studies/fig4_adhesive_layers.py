@@ -25,9 +25,9 @@ import math
 import numpy as np
 
 from .. import surfaces
-from ..adhesion import Adhesion
-from ..adhesion_curve import adhesion_curve
-from ..bodies import Layer
+from ..model.adhesion import Adhesion
+from ..problems.adhesion_curve import adhesion_curve
+from ..model.bodies import Layer
 
 VARIABLES: dict[str, dict[str, str]] = {
     "layer_base": {"units": "1", "long_name": "layer back face (confined, remote_pressure)"},

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import math
 
-from ..contact import solve
+from ..problems.contact import solve
 from ._sliding_layer import SCENE_VARIABLES, coupling_flag, profile_shapes, sliding_layer_scene
 
 VARIABLES: dict[str, dict[str, str]] = {

@@ -9,7 +9,7 @@ resists sliding (:func:`contactlib.analysis.interlocking_friction`).
 
 from __future__ import annotations
 
-from ..contact import solve
+from ..problems.contact import solve
 from ._sliding_layer import SCENE_VARIABLES, coupling_flag, profile_shapes, sliding_layer_scene
 
 VARIABLES: dict[str, dict[str, str]] = {

@@ -6,12 +6,12 @@ speed range: the layer's geometric coupling does not depend on the speed.
 The scene of :mod:`._sliding_layer` (dimensionless, ``L = 1``, ``nu = 0.5``), the layer a standard linear
 solid. Below ``q0 h`` of 1.2-1.5 with ``mu_c = 0.8`` the lagged coupling makes the normal operator's
 symmetric part negative at the longest waves: not monotone, but well posed on a grid that resolves the layer
-(:mod:`contactlib.bodies`), and solved down to ``q0 h = 0.1``.
+(:mod:`contactlib.model.bodies`), and solved down to ``q0 h = 0.1``.
 """
 
 from __future__ import annotations
 
-from ..contact import solve
+from ..problems.contact import solve
 from ._sliding_layer import SCENE_VARIABLES as LAYER_VARIABLES
 from ._sliding_layer import profile_shapes, sliding_layer_scene
 from ._viscoelastic_scene import SCENE_VARIABLES, material, model_flag, speed

@@ -11,7 +11,7 @@ fewer iterations (5361 against 7643) but more time (246 s against 185 s, one run
 from __future__ import annotations
 
 from .. import analysis
-from ..contact import solve
+from ..problems.contact import solve
 from ._common import rough_surface
 from ._viscoelastic_scene import SCENE_VARIABLES, material, model_flag, relaxed_contact_modulus, speed
 

@@ -11,8 +11,8 @@ import xarray as xr
 
 from .. import analysis
 from ..analysis.friction import directional_slope
-from ..contact import solve
-from ..materials import contact_modulus
+from ..problems.contact import solve
+from ..model.materials import contact_modulus
 
 VARIABLES: dict[str, dict[str, str]] = {
     "penetration": {"units": "m", "long_name": "rigid approach from first contact"},

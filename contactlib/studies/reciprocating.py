@@ -11,8 +11,8 @@ import numpy as np
 import xarray as xr
 
 from .. import analysis
-from ..labels import attrs_for
-from ..reciprocating import solve_reciprocating
+from ..core.labels import attrs_for
+from ..problems.reciprocating import solve_reciprocating
 from ._common import rough_surface
 from ._viscoelastic_scene import SCENE_VARIABLES, material, relaxed_contact_modulus
 

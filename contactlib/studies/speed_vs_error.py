@@ -15,8 +15,8 @@ import numpy as np
 import xarray as xr
 
 from .. import accuracy, surfaces
-from ..contact import ConvergenceError, solve, solve_tolerances
-from ..materials import contact_modulus
+from ..problems.contact import ConvergenceError, solve, solve_tolerances
+from ..model.materials import contact_modulus
 from ..reference import hertz, westergaard
 
 VARIABLES: dict[str, dict[str, str]] = {

@@ -21,7 +21,7 @@ import time
 import numpy as np
 
 from .. import two_scale
-from ..contact import solve
+from ..problems.contact import solve
 from ..two_scale.fields import SCATTER_CLIP, SUMMIT_OVER_FOOTPRINT
 
 APPROACH = 0.4

@@ -23,7 +23,7 @@ import numpy as np
 import xarray as xr
 
 from .. import two_scale
-from ..transient import solve_transient as full_transient
+from ..problems.transient import solve_transient as full_transient
 from ._viscoelastic_scene import SCENE_VARIABLES, material
 from .two_scale import VARIABLES as TWO_SCALE_VARIABLES
 from .two_scale import grid_points, nodes_per_spacing, two_scale_shapes

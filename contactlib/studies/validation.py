@@ -8,8 +8,8 @@ import math
 import numpy as np
 
 from .. import surfaces
-from ..contact import solve
-from ..materials import contact_modulus
+from ..problems.contact import solve
+from ..model.materials import contact_modulus
 from ..reference import hertz, westergaard
 
 VARIABLES: dict[str, dict[str, str]] = {

@@ -13,9 +13,9 @@ import numpy as np
 import xarray as xr
 
 from .. import analysis
-from ..contact import solve
-from ..materials import Elastic
-from ..transient import solve_transient
+from ..problems.contact import solve
+from ..model.materials import Elastic
+from ..problems.transient import solve_transient
 from ._common import rough_surface
 from ._viscoelastic_scene import SCENE_VARIABLES, material, relaxed_contact_modulus
 

@@ -10,8 +10,8 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
-from ..grid import Grid
-from ..labels import attrs_for
+from ..core.grid import Grid
+from ..core.labels import attrs_for
 from . import preparation, readers
 
 # attrs that describe one reading; a file written from an earlier reading carries them, and they are renewed

@@ -6,8 +6,8 @@ import numpy as np
 import scipy.signal
 import xarray as xr
 
-from ..grid import Grid
-from ..labels import attrs_for
+from ..core.grid import Grid
+from ..core.labels import attrs_for
 
 
 def resample(heights: xr.DataArray, n: int) -> xr.DataArray:

@@ -9,9 +9,9 @@ import numpy as np
 import xarray as xr
 
 from .._version import __version__
-from ..grid import Grid
-from ..inputs import check_whole, number, real_values
-from ..labels import attrs_for
+from ..core.grid import Grid
+from ..core.inputs import check_whole, number, real_values
+from ..core.labels import attrs_for
 
 
 def _as_dataarray(values, grid: Grid, length_unit: str, **attrs) -> xr.DataArray:

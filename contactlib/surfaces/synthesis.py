@@ -6,12 +6,12 @@ from __future__ import annotations
 import numpy as np
 import xarray as xr
 
-from .. import fft
+from ..core import fft
 from .._version import __version__
 from ..analysis import statistics
-from ..grid import Grid
-from ..inputs import check_whole, number
-from ..labels import attrs_for
+from ..core.grid import Grid
+from ..core.inputs import check_whole, number
+from ..core.labels import attrs_for
 from .spectra import self_affine_psd, stretched_wavenumber
 
 

@@ -17,7 +17,7 @@ import math
 
 import numpy as np
 
-from .._numba import jit
+from ..core._numba import jit
 
 
 @jit

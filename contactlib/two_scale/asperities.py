@@ -15,9 +15,9 @@ from dataclasses import dataclass
 import numpy as np
 import xarray as xr
 
-from .._numba import jit
-from ..grid import Grid
-from ..inputs import real_values
+from ..core._numba import jit
+from ..core.grid import Grid
+from ..core.inputs import real_values
 
 NEIGHBOUR_SPACINGS = 2.5
 """The Ewald sum's real-space reach in mean spacings ``L / sqrt(N)`` (:data:`.interaction.EWALD_NEIGHBOURS`):
@@ -106,7 +106,7 @@ class AsperityTable:
 
 
 def _heights_of(asperities: xr.DataArray) -> tuple[np.ndarray, Grid, float]:
-    """The heights of a 2D DataArray, their grid and the highest [length], as :func:`contactlib.inputs.grid_of`
+    """The heights of a 2D DataArray, their grid and the highest [length], as :func:`contactlib.core.inputs.grid_of`
     reads them (window length = coordinate step x points), with its checks: finiteness and the highest (kept for
     the approach) in one pass rather than a mask, and the coordinates from their indexes rather than as
     DataArrays (0.6 -> 0.2 ms on 700^2)."""

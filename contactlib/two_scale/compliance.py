@@ -11,10 +11,10 @@ import math
 
 import numpy as np
 
-from .. import fft
-from .._numba import jit
-from .interaction import PointInteraction, even_fast_size, gather_from_mesh, gaussian_factors, mesh_wavenumbers, \
-    spread_on_mesh
+from ..core import fft
+from ..core._numba import jit
+from .interaction import (PointInteraction, even_fast_size, gather_from_mesh, gaussian_factors, mesh_wavenumbers,
+    spread_on_mesh)
 
 
 def solve_contact_compliance(interaction: PointInteraction, slope: np.ndarray, rhs: np.ndarray, *,

@@ -8,7 +8,7 @@ import math
 import numpy as np
 from scipy.special import erfc
 
-from .._numba import vector_jit
+from ..core._numba import vector_jit
 
 ERFC_SERIES_REACH = 6.0
 """``alpha r`` up to which :func:`short_range_weights` uses its series (the sum's reach ``erfcinv(accuracy)`` is 3.8 at

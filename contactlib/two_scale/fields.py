@@ -9,7 +9,7 @@ import xarray as xr
 from scipy.spatial import cKDTree
 
 from .. import surfaces
-from ..inputs import check_whole
+from ..core.inputs import check_whole
 
 SUMMIT_OVER_FOOTPRINT = 0.1
 """Summit height over footprint radius of the tallest cap: caps of slope about 0.2 at their edge."""

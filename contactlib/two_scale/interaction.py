@@ -52,8 +52,8 @@ import scipy.fft as sfft
 from scipy import sparse
 from scipy.special import erfc, erfcinv
 
-from .. import fft
-from .._numba import jit
+from ..core import fft
+from ..core._numba import jit
 from .asperities import NEIGHBOUR_SPACINGS, AsperityTable
 from .ewald_weights import short_range_weights
 

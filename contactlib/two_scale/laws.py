@@ -22,9 +22,9 @@ from collections.abc import Callable
 import numpy as np
 from scipy.interpolate import PchipInterpolator
 
-from ..contact import solve as full_solve
-from ..inputs import check_whole
-from ..materials import contact_modulus
+from ..problems.contact import solve as full_solve
+from ..core.inputs import check_whole
+from ..model.materials import contact_modulus
 
 WINDOW = 3.0
 """Window side over the geometric contact radius ``r_g`` of each tabulated penetration (a contact radius

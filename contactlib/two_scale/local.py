@@ -2,7 +2,7 @@
 asperity, and Polonsky & Keer's constrained conjugate gradients vectorised over the stack.
 
 Every window has the same size and spacing, hence the same zero-padded half-space kernel (the
-multiplier of :class:`contactlib.operators.Compliance` with ``periodic=False`` on the window's grid):
+multiplier of :class:`contactlib.model.operators.Compliance` with ``periodic=False`` on the window's grid):
 the stack of ``M`` windows is convolved by one batched real FFT of shape ``(M, 2w, 2w)``, or, for windows
 of at most :data:`DENSE_WINDOW` nodes a side, by one product with the kernel's dense ``w^2 x w^2`` matrix
 (built once from the FFT; 9x faster at 16 nodes). Solving the
@@ -27,9 +27,9 @@ import math
 import numpy as np
 import scipy.fft as sfft
 
-from ..grid import Grid
-from .._numba import jit
-from ..operators import Compliance
+from ..core.grid import Grid
+from ..core._numba import jit
+from ..model.operators import Compliance
 
 
 BLOCK = 1024

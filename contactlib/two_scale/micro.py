@@ -5,7 +5,7 @@ The surface's grid is split into one small window per asperity, centred on the g
 summit and aligned with the grid. Each outer iteration:
 
 1. ``u_all = K p`` on the whole grid, one FFT convolution with the same operator as the full solver
-   (:class:`contactlib.operators.Compliance`);
+   (:class:`contactlib.model.operators.Compliance`);
 2. for each asperity, the displacement due to all the other pressures (and its own far images) on
    its window is ``u_ext = u_all - K_w p_k``, with ``K_w`` the zero-padded half-space kernel on the
    window; at the fixed point ``u_ext + K_w p_k = u_all`` is exactly the full solver's displacement,
@@ -45,8 +45,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..grid import Grid
-from ..operators import Compliance
+from ..core.grid import Grid
+from ..model.operators import Compliance
 from ..solvers.state import residual_from_sums
 from . import _window_sweeps as sweeps
 from .asperities import AsperityTable

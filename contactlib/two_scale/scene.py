@@ -10,7 +10,7 @@ import numbers
 import numpy as np
 
 from .. import surfaces
-from ..inputs import check_iterations, check_tolerance, check_whole
+from ..core.inputs import check_iterations, check_tolerance, check_whole
 from .asperities import AsperityTable, asperity_table
 from .macro import HertzLaw, MacroState
 

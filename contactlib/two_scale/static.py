@@ -11,10 +11,10 @@ import xarray as xr
 from .._version import __version__
 from ..errors import ConvergenceError
 from ..invariants import verify_two_scale
-from ..inputs import number
-from ..labels import attrs_for, dataset
-from ..materials import contact_modulus
-from ..operators import Compliance
+from ..core.inputs import number
+from ..core.labels import attrs_for, dataset
+from ..model.materials import contact_modulus
+from ..model.operators import Compliance
 from ..resolution import guard_asperities
 from .asperities import AsperityTable
 from .interaction import ACCURACY, PointInteraction

@@ -1,9 +1,9 @@
 """The two-scale asperity method in viscoelastic time stepping (seed paper 1, last paragraph; eq. 4).
 
-The time-stepping rule is :func:`contactlib.solve_transient`'s (:mod:`contactlib.hereditary`): over a step
+The time-stepping rule is :func:`contactlib.solve_transient`'s (:mod:`contactlib.model.hereditary`): over a step
 ``dt`` the displacement changes at a constant rate and the Prony branches are integrated exactly, so the
 step is an elastic contact problem at the modulus ``E_eff`` in which the body answers the pressure ``p``
-with ``u = C_eff (p + g)``, ``g`` the history pressure of :class:`contactlib.hereditary.PronyHistory`.
+with ``u = C_eff (p + g)``, ``g`` the history pressure of :class:`contactlib.model.hereditary.PronyHistory`.
 
 **Macro scale, one history per asperity.** The macro step needs each contact to be a Hertz contact. In
 the step's problem the field that is Hertz-shaped is ``p + g`` (the body's "strain" ``S u`` times
@@ -11,7 +11,7 @@ the step's problem the field that is Hertz-shaped is ``p + g`` (the body's "stra
 displacement inside is the sphere's shape (Lee and Radok's solution). So the macro step solves the
 elastic problem of seed eq. 3 at ``E_eff`` for the forces ``F_k = P_k + G_k`` (total ``P + sum G``) and
 returns ``P_k = F_k - G_k``, with ``G_k`` the history force of asperity ``k``: a
-:class:`~contactlib.hereditary.PronyHistory` on an array of ``N`` forces instead of a grid. Exact for
+:class:`~contactlib.model.hereditary.PronyHistory` on an array of ``N`` forces instead of a grid. Exact for
 Lee and Radok's sphere (growing or fixed contact, any load history) and as accurate as the elastic macro
 step for a field; it does not hold where a contact recedes (Ting's problem), which is reported.
 
@@ -39,12 +39,12 @@ import xarray as xr
 from .._version import __version__
 from ..errors import ConvergenceError
 from ..invariants import verify_two_scale_series
-from ..hereditary import PronyHistory
-from ..inputs import load_history, time_values
-from ..labels import attrs_for
-from ..materials import contact_modulus, material_of
-from ..operators import Compliance
-from ..transient import INITIAL_STATES, MODELS_KEPT
+from ..model.hereditary import PronyHistory
+from ..core.inputs import load_history, time_values
+from ..core.labels import attrs_for
+from ..model.materials import contact_modulus, material_of
+from ..model.operators import Compliance
+from ..problems.transient import INITIAL_STATES, MODELS_KEPT
 from .asperities import AsperityTable, asperity_forces
 from .interaction import PointInteraction
 from .laws import TabulatedLaw
@@ -346,7 +346,7 @@ class _Record:
             "max_iter": stepper.max_iter, "single_asperity_law": "hertz",
             **({} if stepper.law is None else {k: v for k, v in stepper.law.attrs.items() if k != "law_E_star"}),
             "time_integration": "displacement at a constant rate over each step, Prony branches integrated exactly "
-                                "(second order; exact at fixed displacement): contactlib.hereditary; memory "
+                                "(second order; exact at fixed displacement): contactlib.model.hereditary; memory "
                                 + ("per asperity (Lee and Radok: contacts that do not recede)"
                                    if stepper.scale == "macro" else "on the grid"),
         })

@@ -6,7 +6,9 @@ from pathlib import Path
 
 from snakemake.utils import validate
 
-from contactlib import lifeline, studies
+from contactlib.pipeline import lifeline
+
+from contactlib import studies
 
 
 validate(config, schema="../schemas/config.schema.yaml")
@@ -71,7 +73,7 @@ def study_spec(wildcards):
 
 
 # One Dask LocalCluster for every sweep of the run (config dask.shared): started by onstart when the run has
-# sweeps to do, stopped by onsuccess/onerror, ended with Snakemake if Snakemake is killed (contactlib.cluster).
+# sweeps to do, stopped by onsuccess/onerror, ended with Snakemake if Snakemake is killed (contactlib.pipeline.cluster).
 SHARED_CLUSTER_FILE = Path(".snakemake/contactlib_dask.json")
 SWEEP_RULES = {"run_study", "run_measured_study"}
 _cluster_process = []
@@ -101,7 +103,7 @@ def start_cluster():
     Path("logs").mkdir(exist_ok=True)
     with open("logs/dask_cluster.log", "w") as log:
         _cluster_process.append(subprocess.Popen(
-            [sys.executable, "-m", "contactlib.cluster", "--scheduler-file", str(SHARED_CLUSTER_FILE),
+            [sys.executable, "-m", "contactlib.pipeline.cluster", "--scheduler-file", str(SHARED_CLUSTER_FILE),
              "--n-workers", str(workers), "--threads-per-worker", str(dask["threads_per_worker"])],
             stdout=log, stderr=subprocess.STDOUT))
 

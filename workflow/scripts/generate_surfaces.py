@@ -3,7 +3,9 @@
 import json
 import sys
 
-from contactlib import studies, sweep
+from contactlib import studies
+
+from contactlib.pipeline import sweep
 
 sys.stderr = open(snakemake.log[0], "w")  # noqa: F821 (snakemake object)
 spec = snakemake.params.spec  # noqa: F821

@@ -3,7 +3,9 @@
 import json
 import sys
 
-from contactlib import surfaces, sweep
+from contactlib import surfaces
+
+from contactlib.pipeline import sweep
 
 sm = snakemake  # noqa: F821 (injected by Snakemake)
 sys.stderr = open(sm.log[0], "w")

@@ -1,11 +1,13 @@
-"""Fan one study's grid over Dask (contactlib.sweep.run_grid) and write results/{study}.nc."""
+"""Fan one study's grid over Dask (contactlib.pipeline.sweep.run_grid) and write results/{study}.nc."""
 
 import functools
 import json
 import os
 import sys
 
-from contactlib import cluster, lifeline, studies, sweep
+from contactlib.pipeline import cluster, lifeline, sweep
+
+from contactlib import studies
 
 
 def main(sm):

@@ -1,0 +1,416 @@
+"""Cohesive-zone adhesion: the contact conditions with the adhesive traction as a term.
+
+The total traction is ``p = p_r + a(g)``: a repulsive part ``p_r >= 0``, zero where the gap ``g = K p +
+max h - h - d`` is open, and the adhesive traction ``a(g) = -sigma(g) <= 0`` of the cohesive law
+(:class:`contactlib.Adhesion`). The conditions ``p_r >= 0, g >= 0, p_r g = 0`` are the complementarity
+function ``phi = min(p_r, c g) = 0`` (``c`` an element stiffness, so both parts are pressures).
+
+Two methods, tried in this order:
+
+1. **Frozen traction** (:class:`_FrozenTraction`). With ``a`` held fixed the problem is non-adhesive:
+   ``q = p - a >= 0`` on the heights ``h - K a`` under the load ``P - mean(a)`` (or at the same approach),
+   which the scene's own constrained solver (Polonsky-Keer, or its dual under periodic displacement
+   control) solves, on any body it handles. The law then gives the next ``a = a(g)``; Anderson mixing
+   accelerates that fixed point, and each round runs only :data:`INNER_ITERATIONS` warm-started CG
+   iterations (a full inner solve on the dual path and on a plate-like remote-pressure layer, whose CG
+   is not preconditioned). Where the inner solver is the preconditioned Polonsky-Keer one the rounds run
+   inside one solve of it whose heights move (:mod:`.cohesive_rounds`: a round costs one FFT pair beside
+   its CG iterations, no set-up), so a solve costs about twice the non-adhesive one on a 2D rough surface
+   (``benchmarks/bench_adhesion.py``). A cold start is the first
+   round itself (``a = 0``). Where the fixed point converges slowly (its gain ``|a'| K`` over the
+   process zone is near 1 on a single smooth contact with a resolved zone: the JKR sphere, a 1D wavy
+   profile), it stops after :data:`STALL_ROUNDS` rounds without a :data:`STALL_DROP` fall, and starts again by
+   continuation in the range (:data:`FROZEN_RANGES`: a Maugis sphere at large lambda, whose contact edge then
+   creeps an element every few rounds, is reached from the same sphere at a smaller lambda).
+2. **Semi-smooth Newton** (primal-dual active set, :class:`.cohesive_newton.CohesiveNewton`): on the active
+   set ``C = {p_r > c g}`` the row is ``g = 0`` (contact), elsewhere ``p = a(g)`` (the law), linearised
+   with ``a'(g)``. Each Newton system goes to GMRES with the body's operator and, on the contact rows, the Fourier
+   preconditioner the constrained CG uses (``operator.inverse_multiplier``). Load control adds the
+   approach as unknown and ``mean(p) = P``. It starts from the non-adhesive state of the scene (or the
+   warm start). The Maugis step is a narrow ramp (:data:`contactlib.model.adhesion.MAUGIS_RAMP`), so Newton
+   sees its edge move. A strong or short-ranged law makes the first Newton steps wild (the active set
+   swings by thousands of points on a rough surface); when a solve stalls it is restarted by
+   continuation in the range (:data:`RANGES`, from its own start), and if that stalls too, from the
+   non-adhesive state by continuation in the work of adhesion (``w / 16`` first, doubled after each
+   converged stage, bisected back after a failed one: :func:`_continuation`). All Newton solves of one solve
+   share one bound on their GMRES iterations (:data:`NEWTON_WORK`), so that a failure comes back in about a minute,
+   not many.
+
+A solve that does not meet ``tol`` comes back ``converged=False``. The residual is scale-free: the mean
+``|phi| / c``, the interpenetration and the repulsive traction's weighted mean gap (``sum |p_r| |g| / sum |p_r|``,
+the weights floored at ``sigma_0 + |P|`` a point) over the rms height, the load error over ``sigma_0 + |P|``, and
+the law's own error over the tractions present (:meth:`.cohesive_newton.CohesiveNewton.law_term`), which the
+window's size and roughness do not dilute.
+The third is the non-adhesive solvers' complementarity term: ``|phi| / c`` alone weighs a traction error by what it
+would displace one element, and let a state with no contact through at tol 1e-3.
+The interpenetration is the mean one for the frozen traction, as for the non-adhesive solvers (whose
+answers at ``tol`` 1e-8 leave a largest interpenetration of a few 1e-8 of the rms height), and the
+largest one for Newton, whose inexact steps can leave a few points far off with a small mean (a 1D
+profile of 8192 points stopped 9 elements short of the contact width on the mean).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from collections.abc import Callable
+
+import numpy as np
+
+from . import sweeps
+from ...model.adhesion import MAUGIS_RAMP
+from ..anderson import Anderson
+from ..symmetric.ccg import solve_polonsky_keer
+from .cohesive_newton import GMRES_ITERATIONS, CohesiveNewton
+from .cohesive_rounds import Rounds
+from ..state import ContactState
+
+MAX_NEWTON = 60
+"""Default bound on the Newton iterations of one solve (one range)."""
+
+NEWTON_WORK = 2**28
+"""Bound on the GMRES iterations of every Newton solve of one cohesive solve together (its continuations'
+included), times the points of the grid (4096 iterations at 256^2, 16,384 at 128^2; the adhesion tests use at most
+8000 on 64^2). A non-periodic Maugis sphere at lambda 5 on 256^2 (1.7 elements across the process zone) raised
+after 246 s and 28,400 GMRES iterations without it; with it, after 40 s, its frozen-traction continuation included
+(0.74 s for the non-adhesive solve, loaded 2-core machine)."""
+
+NEWTON_KRYLOV_FLOOR = 2 * GMRES_ITERATIONS
+"""The least GMRES iterations that bound gives a solve, whatever its grid (two Newton steps' worth; the adhesion
+tests' 512^2 Newton solve takes 87). Issue 38's Maugis sphere at lambda 5 on 512^2 (3.4 elements across the zone)
+raised after 482 s with twice this floor on the loaded machine (three solves at once): most of it in Newton."""
+
+RANGES = (8.0, 4.0, 2.0, 1.0)
+"""Range multipliers of the first continuation a stalled solve restarts with (from its own start)."""
+
+FIRST_FRACTION = 1.0 / 16
+"""The fraction of the work of adhesion a stalled solve's continuation starts from."""
+
+STAGES = 16
+"""Bound on the Newton solves of that continuation."""
+
+ANDERSON_DEPTH = 5
+"""Rounds of the frozen-traction iteration that Anderson mixing combines (2-8 took the same rounds on the
+benchmark scene; without mixing the Maugis law took 22 rounds instead of 14)."""
+
+ANDERSON_BETA = 1.3
+"""Mixing parameter of the Anderson step, ``x + beta f - sum gamma (dx + beta df)`` (``f = T(x) - x``): 1 is
+the plain step. On the benchmark scene (``benchmarks/bench_adhesion.py``, iterations / rounds, exponential and
+Maugis) 256^2: 0.5 45/15 and 57/19, 1 39/13 and 42/14, 1.3 36/12 and 39/13, 1.5 39/13 and 39/13, 2 42/14 and
+36/12; 512^2: 1 45/15 both, 1.3 42/14 both."""
+
+ANDERSON_RIDGE = 1e-14
+"""Relative ridge of the mixing's normal equations (:class:`.anderson.Anderson`)."""
+
+MAX_ROUNDS = 100
+"""Bound on the rounds of the frozen-traction iteration before the Newton solve takes over."""
+
+INNER_ITERATIONS = 3
+"""CG iterations of the primal inner solve a round (256^2 rough scene: 2 took 36-40 iterations in 18-20
+rounds, 3 took 39-42 in 13-14, uncapped 66-105 in 8-12; a round's restart costs about one iteration)."""
+
+CONTINUED = True
+"""Run the rounds inside one Polonsky-Keer solve that moves its heights (:mod:`.cohesive_rounds`) where the inner
+solve is that one; False restarts it each round (the dual path and an unpreconditioned CG always do)."""
+
+STALL_ROUNDS = 4
+STALL_DROP = 0.25
+"""The frozen-traction iteration counts as stalled when :data:`STALL_ROUNDS` rounds have not brought the residual
+below ``STALL_DROP`` times its best before them (on 2D rough scenes under load it falls 2-3x a round; where it
+falls 10 % a round, as on a 1D wavy profile with a 16-element process zone, Newton is faster)."""
+
+FROZEN_RANGES = (2.0, np.sqrt(2.0), 1.0)
+"""Range multipliers of the frozen-traction continuation a stalled frozen traction restarts with, before Newton
+(:func:`_frozen_continuation`). A non-periodic Maugis sphere at lambda 3.58 (256^2 over a quarter of its radius,
+3.4 elements across the process zone, the approach 0.002 R): the frozen traction stalled after 11 rounds and
+Newton then failed after 137 s (14,500 GMRES iterations); through this continuation it converges cold in 36, 6
+and 22 rounds, 4.3 s against 1.0 s for the non-adhesive solve (loaded 2-core machine), to residual 1.2e-7."""
+
+FROZEN_LOOSE_TOL = 1e-4
+"""The tolerance of the continuation's intermediate stages: only a start for the next."""
+
+FROZEN_STALL_ROUNDS = MAX_ROUNDS
+""":data:`STALL_ROUNDS` of the continuation's stages, whose only bound is :data:`MAX_ROUNDS`: there the contact edge
+moves an element every few rounds, with the residual flat between (a Maugis sphere at lambda 1.8, 4 elements
+across the zone at lambda 3.6: 42 rounds from 3e-2 to 1e-5, flat over 4-7 rounds at a time)."""
+
+FIRST_INNER_TOL = 1e-2
+INNER_FRACTION = 0.1
+INNER_FLOOR = 0.1
+"""The inner solves' tolerance: :data:`FIRST_INNER_TOL` first, then this fraction of the outer residual,
+never below ``INNER_FLOOR * tol``."""
+
+
+def solve_cohesive(
+    operator,
+    heights: np.ndarray,
+    *,
+    adhesion,
+    mean_pressure: float | None = None,
+    penetration: float | None = None,
+    tol: float = 1e-8,
+    max_iter: int = MAX_NEWTON,
+    initial_pressure: np.ndarray | None = None,
+    initial_penetration: float | None = None,
+    solve_repulsive: Callable[..., ContactState] | None = None,
+) -> tuple[ContactState, np.ndarray]:
+    """Adhesive contact of a rigid surface with a cohesive law.
+
+    Parameters
+    ----------
+    operator : Compliance
+        The body's normal compliance.
+    heights : ndarray
+        Rigid surface heights [length]; higher points touch first.
+    adhesion : contactlib.Adhesion
+        A cohesive law (``"maugis"`` or ``"exponential"``).
+    mean_pressure, penetration : float
+        Exactly one: the applied mean traction [pressure], adhesive part included (may be negative),
+        or the approach from first contact of the highest point [length] (may be negative).
+    tol : float
+        Target of the scale-free residual (module docstring).
+    max_iter : int
+        Bound on the Newton iterations per range.
+    initial_pressure, initial_penetration : optional
+        Warm start: the total traction [pressure] (and, load control, the approach) of a neighbouring
+        state, e.g. the previous point of a path.
+    solve_repulsive : callable, optional
+        ``solve_repulsive(heights, mean_pressure=, penetration=, tol=, max_iter=, initial_pressure=)``: the
+        scene's non-adhesive constrained solver, for a cold start.
+
+    Returns
+    -------
+    (ContactState, ndarray)
+        The state (``pressure`` the total traction; frozen traction: ``iterations`` the inner CG iterations,
+        ``outer_iterations`` the rounds; Newton: ``iterations`` the Newton steps, ``outer_iterations`` the
+        GMRES iterations, both over every Newton solve, the continuations' failed stages included; ``solver``
+        names the method) and the repulsive part ``p_r`` [pressure].
+    """
+    load_control = mean_pressure is not None
+    p = None if initial_pressure is None else np.array(initial_pressure, dtype=float)
+    delta = initial_penetration if load_control else penetration
+    result = None
+    if solve_repulsive is not None:  # cold: its first round is the non-adhesive solve, to a loose tolerance
+        result = _FrozenTraction(operator, heights, adhesion, mean_pressure, penetration, tol,
+                                 solve_repulsive)(p, delta)
+        if result is not None and not result[-1] and np.isfinite(result[6]):
+            result = _frozen_continuation(operator, heights, adhesion, mean_pressure, penetration, tol,
+                                          solve_repulsive, p, delta, result)
+    method = "cohesive-frozen-traction"
+    spent = [0, 0]  # Newton steps and GMRES iterations of every Newton solve: the failed ones' are reported too
+
+    krylov_budget = max(NEWTON_WORK // heights.size, NEWTON_KRYLOV_FLOOR)
+
+    def newton(law, p, delta):  # every Newton solve draws on one bound of GMRES iterations
+        solved = CohesiveNewton(operator, heights, law, mean_pressure, penetration, tol, max_iter,
+                                krylov=krylov_budget - spent[1])(p, delta)
+        spent[0], spent[1] = spent[0] + solved[4], spent[1] + solved[5]
+        return solved
+
+    if result is None or not result[-1]:  # the frozen-traction iteration stalled: semi-smooth Newton
+        method = "cohesive-newton"
+        if p is None:
+            p, delta = _cold_start(operator, heights, adhesion, mean_pressure, penetration, solve_repulsive)
+        if delta is None:
+            delta = 0.0
+        result = newton(adhesion, p, delta)
+    if not result[-1]:  # stalled: continuation in the range (8, 4, 2, 1 times), warm-started stage to stage
+        p_c, d_c = p, delta
+        for factor in RANGES:
+            result = newton(dataclasses.replace(adhesion, range=adhesion.range * factor), p_c, d_c)
+            p_c, d_c = result[0], result[1]
+    if not result[-1]:  # still stalled: continuation in the work of adhesion from the cold start
+        result = _continuation(newton, adhesion,
+                               *_cold_start(operator, heights, adhesion, mean_pressure, penetration, solve_repulsive))
+    p, delta, g, p_r, iterations, krylov, residual, converged = result
+    if method == "cohesive-newton":
+        iterations, krylov = spent
+    displacement = g - (heights.max() - heights) + delta
+    state = ContactState(pressure=p, gap=g, displacement=displacement, penetration=float(delta),
+                         mean_pressure=float(p.mean()), iterations=iterations, residual=float(residual),
+                         converged=bool(converged), solver=f"{method} ({adhesion.model})",
+                         outer_iterations=krylov)
+    return state, p_r
+
+
+def _frozen_continuation(operator, heights, adhesion, mean_pressure, penetration, tol, solve_repulsive, p, delta,
+                         stalled):
+    """The frozen traction along the ranges :data:`FROZEN_RANGES` (times the law's), from ``(p, delta)``, each stage
+    warm-started from the last one's state, the intermediate ones to :data:`FROZEN_LOOSE_TOL` and every stage given
+    :data:`FROZEN_STALL_ROUNDS` before its stall check. A longer range is a smaller Maugis parameter (the same work,
+    a lower peak stress): a longer process zone, which the fixed point resolves in few rounds, and a start for the
+    next stage whose contact edge is already within an element or two of its place. Returns the last stage's
+    result (its ``iterations`` and rounds those of every stage), or ``stalled`` (the first attempt's) where a
+    stage unloads the contact or none gets closer than it."""
+    iterations, rounds, result = stalled[4], stalled[5], None
+    for factor in FROZEN_RANGES:
+        last = factor == FROZEN_RANGES[-1]
+        law = adhesion if last else dataclasses.replace(adhesion, range=adhesion.range * factor)
+        stage = _FrozenTraction(operator, heights, law, mean_pressure, penetration,
+                                tol if last else max(tol, FROZEN_LOOSE_TOL), solve_repulsive,
+                                stall_rounds=FROZEN_STALL_ROUNDS)(p, delta)
+        if stage is None or not np.isfinite(stage[6]):
+            return stalled
+        iterations, rounds = iterations + stage[4], rounds + stage[5]
+        p, delta, result = stage[0], stage[1], stage
+    if result is None or result[6] > stalled[6]:
+        return stalled
+    return (*result[:4], iterations, rounds, *result[6:])
+
+
+def _continuation(newton, adhesion, p, delta):
+    """Newton (``newton(law, p, delta)``) along ``w -> f w``, ``f`` from :data:`FIRST_FRACTION` to 1: doubled after a
+    converged stage, moved halfway back towards the last converged one after a failed stage (at most
+    :data:`STAGES`)."""
+    done, f, result = 0.0, FIRST_FRACTION, None
+    for _ in range(STAGES):
+        trial = newton(dataclasses.replace(adhesion, work=adhesion.work * f), p, delta)
+        if trial[-1]:
+            p, delta, done, result = trial[0], trial[1], f, trial
+            if f == 1.0:
+                return trial
+            f = min(1.0, 2.0 * f)
+        else:
+            result = result if result is not None and done == 1.0 else trial
+            f = 0.5 * (done + f)
+    return trial if done < 1.0 else result
+
+
+def _cold_start(operator, heights, adhesion, mean_pressure, penetration, solve_repulsive):
+    """The non-adhesive state at the same approach (or at the load, if compressive): contact first."""
+    if solve_repulsive is None:
+        return np.zeros_like(heights), (penetration if penetration is not None else 0.0)
+    if penetration is not None:
+        state = solve_repulsive(heights, mean_pressure=None, penetration=float(penetration))
+        return state.pressure, penetration
+    load = max(float(mean_pressure), 0.0)
+    if load == 0.0:  # under tension: start from the contact of the adhesive stress itself
+        load = adhesion.peak_stress * 1e-3
+    state = solve_repulsive(heights, mean_pressure=load, penetration=None)
+    return state.pressure, state.penetration
+
+
+class _FrozenTraction:
+    """The cohesive contact as a sequence of non-adhesive ones: with the adhesive traction ``a`` frozen, the
+    total traction is ``p = a + q``, ``q >= 0`` the repulsive part, and the gap ``K q + (K a + h0 - d)``: the
+    scene's own constrained solver (Polonsky-Keer, or its dual) on the heights ``h - K a`` under the load
+    ``P - mean(a)``. The law then gives the next traction ``a(g)``; Anderson mixing (Walker & Ni, SIAM J.
+    Numer. Anal. 49, 1715-1735, 2011) of the last :data:`ANDERSON_DEPTH` rounds makes that fixed point
+    converge where plain substitution oscillates (its gain ``|a'| K`` is of order 1 across the process
+    zone, which is what sets the zone's length). Each inner solve is warm-started from the last ``q``,
+    stopped at a tolerance that follows the outer residual down and, on the primal path, after
+    :data:`INNER_ITERATIONS` iterations. The residual is that of :class:`.cohesive_newton.CohesiveNewton` with the mean
+    interpenetration, on the state ``(a + q, g)`` the inner solve returns."""
+
+    def __init__(self, operator, heights, adhesion, mean_pressure, penetration, tol, solve_repulsive,
+                 stall_rounds=None):
+        self.op, self.law, self.tol, self.solve = operator, adhesion, tol, solve_repulsive
+        self.stall_rounds = STALL_ROUNDS if stall_rounds is None else int(stall_rounds)
+        self.heights, self.load, self.penetration = heights, mean_pressure, penetration
+        self.measure = CohesiveNewton(operator, heights, adhesion, mean_pressure, penetration, tol, 1)
+        # the primal solver keeps its progress from a warm start, so a few iterations a round suffice; the dual
+        # one (periodic displacement control) restarts from the gap of the pressure and needs its full solve
+        dual = not operator.definite and mean_pressure is None
+        full = dual or not operator.preconditionable  # an unpreconditioned CG (plate-like layer) crawls too
+        self.cap = {} if INNER_ITERATIONS is None or full else {"max_iter": INNER_ITERATIONS}
+        # where the inner solve is the preconditioned Polonsky-Keer one (what constrained_solve runs there), the
+        # rounds go on inside one solve of it instead of restarting it (.cohesive_rounds)
+        self.continued = CONTINUED and not full and INNER_ITERATIONS is not None
+
+    def __call__(self, p, delta):
+        law, heights = self.law, self.heights
+        if p is None:  # cold: no adhesive traction yet, the inner solver's own start
+            a, q = np.zeros_like(heights), None
+        else:
+            if delta is None:  # a warm start without its approach: the one that closes the smallest gap
+                delta = float(np.min(self.op(p) + self.measure.h0))
+            a = law.traction(self.op(p) + self.measure.h0 - delta)
+            q = np.maximum(p - a, 0.0)
+        # the traction stays within the law's, [-sigma_0, 0]; a round on a large grid wants the fused sweeps
+        self.mix = Anderson(ANDERSON_DEPTH, beta=ANDERSON_BETA, bounds=(-law.peak_stress, 0.0), ridge=ANDERSON_RIDGE,
+                            fused=True)
+        self.image = np.empty_like(heights)  # the law's traction at the last gap
+        self.inner_tol, self.history, self.rounds, self.residual = FIRST_INNER_TOL, [], 0, np.inf
+        result = self._continued(a, q) if self.continued else self._restarted(a, q)
+        if result is None:
+            return None
+        p, delta, g, iterations = result
+        # the last sweep left the law's traction at g in image: the repulsive part without another evaluation
+        p_r = p - self.image
+        closed = np.where(p_r > self.measure.c * g, p_r, 0.0)
+        return p, delta, g, closed, iterations, self.rounds, self.residual, self.residual <= self.tol
+
+    def judge(self, p, g) -> bool:
+        """One round's verdict on the state ``(p, g)``: its residual (:attr:`residual`, the law's traction at
+        ``g`` in :attr:`image`), and whether to go on (not converged, not stalled, rounds left); if so the
+        next inner tolerance (:attr:`inner_tol`)."""
+        self.rounds += 1
+        residual = self.residual = self._residual(p, g, self.image)
+        if residual <= self.tol or not np.isfinite(residual) or self.rounds >= MAX_ROUNDS:
+            return False
+        history = self.history
+        history.append(residual)
+        stall = self.stall_rounds
+        if len(history) > stall and min(history[-stall:]) > STALL_DROP * min(history[:-stall]):
+            return False  # too slow (a contact edge that moves a few elements a round): Newton takes over
+        self.inner_tol = max(min(self.inner_tol, INNER_FRACTION * residual), INNER_FLOOR * self.tol)
+        return True
+
+    def _continued(self, a, q):
+        """The rounds inside one Polonsky-Keer solve (:mod:`.cohesive_rounds`): ``(p, delta, g, iterations)``,
+        or None where the adhesive traction alone would carry the load."""
+        shifted = self.heights - self.op(a) if q is not None else self.heights
+        lift = float(shifted.max()) - float(self.heights.max())  # the solve's approach counts from there
+        load = None
+        if self.load is not None:
+            load = self.load - float(a.mean())
+            if load <= 0.0:
+                return None
+        rounds = Rounds(self, a, load, INNER_ITERATIONS)
+        state = solve_polonsky_keer(self.op, shifted, mean_pressure=load,
+                                    penetration=None if load is not None else self.penetration + lift,
+                                    tol=0.0, max_iter=MAX_ROUNDS * (INNER_ITERATIONS + 1), initial_pressure=q,
+                                    rounds=rounds)
+        if rounds.unloaded:
+            return None
+        # the solve stopped where judge did, before any move: its state is the one judged (a, not yet mixed)
+        return state.pressure + rounds.a, state.penetration - lift, state.gap, state.iterations
+
+    def _restarted(self, a, q):
+        """A new inner solve each round (the dual path, an unpreconditioned CG): ``(p, delta, g, iterations)``,
+        or None where the adhesive traction alone would carry the load."""
+        heights, top, iterations = self.heights, float(self.heights.max()), 0
+        shifted = np.empty_like(heights)  # h - K a, rewritten each round (the inner solve keeps no reference)
+        while True:
+            self.op(a, out=shifted)
+            np.subtract(heights, shifted, out=shifted)
+            lift = float(shifted.max()) - top  # the approach is counted from the highest shifted point
+            if self.load is not None:
+                load = self.load - float(a.mean())
+                if load <= 0.0:  # the adhesive traction alone carries the load: no repulsive contact left
+                    return None
+                inner = self.solve(shifted, mean_pressure=load, penetration=None, tol=self.inner_tol,
+                                   initial_pressure=q, **self.cap)
+            else:
+                inner = self.solve(shifted, mean_pressure=None, penetration=self.penetration + lift,
+                                   tol=self.inner_tol, initial_pressure=q, **self.cap)
+            iterations += inner.iterations
+            q, g, delta = inner.pressure, inner.gap, inner.penetration - lift
+            p = q + a
+            if not self.judge(p, g):
+                return p, delta, g, iterations
+            a = self.mix(a, self.image)
+
+    def _residual(self, p, g, image):
+        """:meth:`.cohesive_newton.CohesiveNewton.residual_of` (mean interpenetration) in one sweep, writing the law's
+        traction at the gap ``g`` into ``image``."""
+        m, law = self.measure, self.law
+        code = sweeps.MAUGIS if law.model == "maugis" else sweeps.EXPONENTIAL
+        phi_sum, overlap, comp, weight, traction, interacting = sweeps.law_residual(
+            np.ascontiguousarray(p).ravel(), np.ascontiguousarray(g).ravel(), code, law.peak_stress, law.range,
+            MAUGIS_RAMP, m.c, image.reshape(-1))
+        residual = max(phi_sum / m.c, overlap, m.complementarity(comp, weight)) / (p.size * m.hs)
+        residual = max(residual, m.law_term(phi_sum, traction, interacting))
+        if m.control:
+            residual = max(residual, abs(float(p.mean()) - m.load) / m.pscale)
+        return residual
+
