@@ -8,7 +8,7 @@ import pytest
 import xarray as xr
 
 import contactlib
-from contactlib import accuracy, studies
+from contactlib import accuracy, analysis, studies
 from contactlib.pipeline import sweep
 from contactlib.reference import westergaard
 from contactlib.studies import speed_vs_error
@@ -134,21 +134,21 @@ def test_studies_state_the_area_error_of_their_resolution():
 
 def test_analysis_helpers():
     r = np.array([4.0, 8.0, 16.0, 32.0])
-    order, constant = accuracy.fit_order(r, 0.3 * r**-1.5)
+    order, constant = analysis.fit_order(r, 0.3 * r**-1.5)
     assert order == pytest.approx(1.5, rel=1e-12) and constant == pytest.approx(0.3, rel=1e-12)
-    assert math.isnan(accuracy.fit_order(r[:2], r[:2])[0])
+    assert math.isnan(analysis.fit_order(r[:2], r[:2])[0])
     cost, err = np.array([1.0, 2.0, 3.0, 4.0]), np.array([0.5, 0.6, 0.1, 0.1])
-    assert accuracy.pareto_front(cost, err).tolist() == [True, False, True, False]
+    assert analysis.pareto_front(cost, err).tolist() == [True, False, True, False]
     ds = xr.Dataset(
         {"max_error": (("scene", "n", "tol", "kernel"), np.array([0.1, 0.01, 0.02, 0.001]).reshape(1, 2, 1, 2)),
          "solve_time": (("scene", "n", "tol", "kernel"), np.array([1.0, 2.0, 3.0, 4.0]).reshape(1, 2, 1, 2)),
          "status": (("scene", "n", "tol", "kernel"), np.zeros((1, 2, 1, 2), dtype=np.int8))},
         coords={"scene": ["s"], "n": [32, 64], "tol": [1e-8], "kernel": ["love", "spectral"]})
-    rows = accuracy.cheapest_settings(ds, [0.05, 0.005, 1e-4])
+    rows = analysis.cheapest_settings(ds, [0.05, 0.005, 1e-4])
     assert (rows[0]["kernel"], rows[0]["n"], rows[0]["solve_time"]) == ("spectral", 32, 2.0)
     assert (rows[1]["kernel"], rows[1]["n"]) == ("spectral", 64)
     assert rows[2]["kernel"] == "" and rows[2]["best_error"] == 0.001
-    table = accuracy.markdown_table(rows)
+    table = analysis.markdown_table(rows)
     assert "| 5.00% | s | spectral | 32 | 1e-08 | 2 |" in table and "not reached" in table
 
 

@@ -14,7 +14,8 @@ import math
 import numpy as np
 import xarray as xr
 
-from .. import accuracy, surfaces
+from .. import surfaces
+from ..analysis import convergence
 from ..problems.contact import ConvergenceError, solve, solve_tolerances
 from ..model.materials import contact_modulus
 from ..reference import hertz, westergaard
@@ -241,7 +242,7 @@ def _speed_error_results(*, tols: tuple, scene: str, n: int, kernel: str, E: flo
             outcomes[tol] = _Outcome(error=ConvergenceError(out.attrs["convergence_message"],
                                                             residual=float(out.residual), dataset=None))
             continue
-        found = dict.fromkeys(accuracy.QUANTITIES, math.nan)
+        found = dict.fromkeys(convergence.QUANTITIES, math.nan)
         found.update(errors(out))
         outcomes[tol] = _Outcome({
             **found, "max_error": max(v for v in found.values() if not math.isnan(v)),

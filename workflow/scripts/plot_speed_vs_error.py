@@ -9,13 +9,13 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 import xarray as xr  # noqa: E402
 
-from contactlib import accuracy  # noqa: E402
+from contactlib import analysis  # noqa: E402
 
 sm = snakemake  # noqa: F821
 sys.stderr = open(sm.log[0], "w")
 ds = xr.open_dataset(sm.input.data)
 ok = ds.where(ds.status == 0)
-orders = accuracy.convergence_orders(ds)
+orders = analysis.convergence_orders(ds)
 scenes = ds.scene.values
 fig, axes = plt.subplots(2, len(scenes), figsize=(4.2 * len(scenes), 8), layout="constrained", squeeze=False)
 marks = dict(zip(orders.quantity.values, "osD^"))
@@ -27,7 +27,7 @@ for ax, ax2, scene in zip(axes[0], axes[1], scenes):
         sel = d.sel(kernel=kernel)
         ax.loglog(sel.solve_time.values.ravel(), np.maximum(sel.max_error.values.ravel(), floor), "o", ms=3,
                   color=f"C{k}", alpha=0.6, label=kernel)
-    front = accuracy.pareto_front(t, e)
+    front = analysis.pareto_front(t, e)
     order = np.argsort(t[front])
     ax.loglog(t[front][order], e[front][order], "k.-", lw=1, ms=6, label="Pareto front")
     ax.set(xlabel=f"{ds.solve_time.long_name} [{ds.solve_time.units}]", ylabel=f"{ds.max_error.long_name} [1]",
