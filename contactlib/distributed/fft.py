@@ -154,3 +154,33 @@ def irfft2(comm, spectrum: np.ndarray, shape: tuple[int, int], *, padded: bool =
     plan = SlabFFT(comm, shape, padded=padded, effort="FFTW_ESTIMATE")
     plan.spectrum[...] = spectrum
     return plan.inverse("field").copy() / float(np.prod(plan.work_shape))
+
+
+def rows_to_columns(comm, rows: np.ndarray, n_rows: int) -> np.ndarray:
+    """The global transpose: from this rank's rows ``(local rows, columns)`` of an ``(n_rows, columns)`` array to
+    its columns ``(n_rows, local columns)`` (:class:`.Slabs` splits of both), by one ``Alltoallv``."""
+    size = comm.Get_size()
+    row_split, column_split = Slabs(n_rows, size), Slabs(rows.shape[1], size)
+    c0, c1 = column_split.bounds(comm.Get_rank())
+    packed = np.concatenate([np.ascontiguousarray(rows[:, a: a + k]).ravel()
+                             for a, k in zip(column_split.starts, column_split.counts)])
+    out = np.empty((n_rows, c1 - c0), dtype=rows.dtype)
+    comm.Alltoallv([packed, (rows.shape[0] * column_split.counts, rows.shape[0] * column_split.starts)],
+                   [out, (row_split.counts * (c1 - c0), row_split.starts * (c1 - c0))])
+    return out
+
+
+def columns_to_rows(comm, columns: np.ndarray, n_columns: int) -> np.ndarray:
+    """The inverse of :func:`rows_to_columns`: from this rank's columns ``(rows, local columns)`` of a
+    ``(rows, n_columns)`` array to its rows ``(local rows, n_columns)``."""
+    size = comm.Get_size()
+    row_split, column_split = Slabs(columns.shape[0], size), Slabs(n_columns, size)
+    r0, r1 = row_split.bounds(comm.Get_rank())
+    width = columns.shape[1]
+    received = np.empty((r1 - r0) * n_columns, dtype=columns.dtype)
+    comm.Alltoallv([np.ascontiguousarray(columns), (row_split.counts * width, row_split.starts * width)],
+                   [received, ((r1 - r0) * column_split.counts, (r1 - r0) * column_split.starts)])
+    out = np.empty((r1 - r0, n_columns), dtype=columns.dtype)
+    for a, k in zip(column_split.starts, column_split.counts):
+        out[:, a: a + k] = received[(r1 - r0) * a: (r1 - r0) * (a + k)].reshape(r1 - r0, k)
+    return out
