@@ -11,6 +11,12 @@ Nothing here imports ``mpi4py`` at import time; the functions take the communica
 * :mod:`.io`: surfaces read and results written by slab (NetCDF).
 """
 
-from .solve import solve
-
 __all__ = ["solve"]
+
+
+def __getattr__(name):
+    if name == "solve":  # imported on first use: the serial command line only reads .launch
+        from .solve import solve
+
+        return solve
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
