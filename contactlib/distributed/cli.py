@@ -73,7 +73,7 @@ def solve(args) -> int:
     from ..contact import ConvergenceError
     from ..grid import Grid
     from ..materials import Elastic, contact_modulus
-    from .solve import solve as distributed_solve
+    from .normal_contact import solve as distributed_solve
 
     comm = _world()
     _refuse_serial_only(args)
