@@ -54,9 +54,9 @@ class SlabFFT:
         self.column_start, self.column_stop = self.columns.bounds(self.rank)
         n_rows, n_cols = self.row_stop - self.row_start, self.column_stop - self.column_start
         effort = effort or serial_fft.fft_options()["effort"]
-        # row spectra (rfft along y), the packing buffer of the transpose, and this rank's spectral columns
+        serial_fft._load_wisdom_once()  # the serial plans' on-disk wisdom: FFTW_MEASURE is paid once per shape
+        # row spectra (rfft along y) and this rank's spectral columns
         self._row_spectra = pyfftw.empty_aligned((n_rows, self.spectral_columns), dtype="complex128")
-        self._packed = pyfftw.empty_aligned(n_rows * self.spectral_columns, dtype="complex128")
         self.spectrum = pyfftw.empty_aligned((mx, n_cols), dtype="complex128")
         self.buffers = {}
         for name in (*inputs, *outputs):
@@ -69,15 +69,25 @@ class SlabFFT:
         self._col_forward = pyfftw.FFTW(self.spectrum, self.spectrum, axes=(0,), flags=(effort,), threads=1)
         self._col_backward = pyfftw.FFTW(self.spectrum, self.spectrum, axes=(0,), direction="FFTW_BACKWARD",
                                          flags=(effort,), threads=1)
+        if effort != "FFTW_ESTIMATE":
+            serial_fft._save_wisdom()
         for buffer in self.buffers.values():
             buffer.fill(0.0)
         self.spectrum.fill(0.0)
-        # Alltoallv layouts: forward, rank s gets our rows in its columns (packed by destination); it receives
-        # each source's rows of its own columns straight into its spectral columns, in row order
-        counts_c, starts_c = self.columns.counts, self.columns.starts
-        counts_r, starts_r = self.rows.counts, self.rows.starts
-        self._by_destination = (n_rows * counts_c, n_rows * starts_c)
-        self._by_source_rows = (counts_r * n_cols, starts_r * n_cols)
+        # The transpose is one Alltoallw: to rank s go our rows of its columns, a subarray datatype of the row
+        # spectra (no packing buffer); from rank r come its rows of our columns, a contiguous block of our spectral
+        # columns at r's first row. The inverse swaps the two.
+        from mpi4py import MPI  # the distributed path only
+
+        item = MPI.C_DOUBLE_COMPLEX
+        self._types = [item.Create_subarray([n_rows, self.spectral_columns], [n_rows, int(k)], [0, int(c)]).Commit()
+                       for c, k in zip(self.columns.starts, self.columns.counts)]
+        self._row_side = [self._row_spectra, [1] * self.size, [0] * self.size, self._types]
+        self._column_side = [self.spectrum, [int(k) * n_cols for k in self.rows.counts],
+                             [int(a) * n_cols * 16 for a in self.rows.starts], [item] * self.size]
+        # bytes this rank sends to the others per transpose (its own block stays): the communication volume
+        self.bytes_per_transpose = 16 * n_rows * (self.spectral_columns - n_cols)
+        self.transposes = 0
 
     @property
     def local_shape(self) -> tuple[int, int]:
@@ -94,15 +104,10 @@ class SlabFFT:
         buffer = self.buffers[name]
         self._r2c.update_arrays(buffer, self._row_spectra)
         self._r2c.execute()
-        starts, counts = self.columns.starts, self.columns.counts
-        n_rows = self._row_spectra.shape[0]
-        for s in range(self.size):  # pack by destination: each block contiguous
-            block = self._packed[n_rows * starts[s]: n_rows * (starts[s] + counts[s])]
-            block.reshape(n_rows, counts[s])[...] = self._row_spectra[:, starts[s]: starts[s] + counts[s]]
-        nx = self.shape[0]
         if self.padded:
-            self.spectrum[nx:] = 0.0
-        self.comm.Alltoallv([self._packed, self._by_destination], [self.spectrum[:nx], self._by_source_rows])
+            self.spectrum[self.shape[0]:] = 0.0
+        self.comm.Alltoallw(self._row_side, self._column_side)
+        self.transposes += 1
         self._col_forward.execute()
         return self.spectrum
 
@@ -110,13 +115,8 @@ class SlabFFT:
         """Transform :attr:`spectrum` (destroyed) back into buffer ``name`` (unnormalised); returns the view of
         the field's columns."""
         self._col_backward.execute()
-        nx = self.shape[0]
-        self.comm.Alltoallv([self.spectrum[:nx], self._by_source_rows], [self._packed, self._by_destination])
-        starts, counts = self.columns.starts, self.columns.counts
-        n_rows = self._row_spectra.shape[0]
-        for s in range(self.size):
-            block = self._packed[n_rows * starts[s]: n_rows * (starts[s] + counts[s])]
-            self._row_spectra[:, starts[s]: starts[s] + counts[s]] = block.reshape(n_rows, counts[s])
+        self.comm.Alltoallw(self._column_side, self._row_side)
+        self.transposes += 1
         buffer = self.buffers[name]
         self._c2r.update_arrays(self._row_spectra, buffer)
         self._c2r.execute()
