@@ -14,6 +14,7 @@ from __future__ import annotations
 from collections.abc import Callable
 from dataclasses import dataclass
 
+import numba
 import numpy as np
 
 from ..solvers import _fused as fz
@@ -46,11 +47,22 @@ def global_max(comm, value: float) -> float:
     return float(comm.allreduce(float(value), op=MPI.MAX))
 
 
+@numba.njit(cache=True, nogil=True)
+def _squares_about(values, mean):
+    """``sum((values - mean)^2)`` without a temporary field."""
+    total = 0.0
+    for i in range(values.shape[0]):
+        for j in range(values.shape[1]):
+            d = values[i, j] - mean
+            total += d * d
+    return total
+
+
 def global_height_scale(op: DistributedCompliance, heights: np.ndarray) -> float:
     """:func:`contactlib.solvers.state.height_scale` over the whole grid: the rms about the mean."""
     n = op.shape[0] * op.shape[1]
     mean = float(op.allsum(float(np.sum(heights)))[0]) / n
-    s = float(np.sqrt(op.allsum(float(np.sum((heights - mean) ** 2)))[0] / n))
+    s = float(np.sqrt(op.allsum(_squares_about(heights, mean))[0] / n))
     return s if s > 0 else 1.0
 
 
@@ -58,19 +70,26 @@ def solve_polonsky_keer(op: DistributedCompliance, heights: np.ndarray, *, mean_
                         penetration: float | None = None, tol: float = 1e-8, max_iter: int = 10_000,
                         precondition: bool = True, restart_fraction: float = RESTART_FRACTION,
                         verify: Callable[[LocalState], float] | None = None,
-                        progress: Callable[[int, float], None] | None = None, row_start: int = 0) -> LocalState:
+                        progress: Callable[[int, float], None] | None = None, row_start: int = 0,
+                        overwrite_heights: bool = False) -> LocalState:
     """This rank's rows of the contact pressure under load or displacement control.
 
     Arguments as :func:`contactlib.solvers.ccg.solve_polonsky_keer` (``heights``: this rank's rows);
     ``verify(state)``, a second residual evaluated once the loop's own reaches ``tol``, as there;
-    ``progress(iteration, residual)`` after each evaluation (rank 0 logs).
+    ``progress(iteration, residual)`` after each evaluation (rank 0 logs); ``overwrite_heights``: the heights'
+    buffer becomes the heights below their maximum (one field less per rank).
     """
     load_control = mean_pressure is not None
     precondition = precondition and (load_control or op.definite)
     n = op.shape[0] * op.shape[1]
     hmax = global_max(op.comm, heights.max())
-    hp = heights - hmax
     scale = global_height_scale(op, heights)
+    if overwrite_heights:
+        heights -= hmax
+        hp = heights
+    else:
+        hp = heights - hmax
+    del heights
     self_compliance = op.self_compliance()
     reentry = op.reentry_scale() if precondition else 1.0
     sweeps = fz.SERIAL
@@ -86,12 +105,12 @@ def solve_polonsky_keer(op: DistributedCompliance, heights: np.ndarray, *, mean_
 
     if load_control:
         if mean_pressure == 0:
-            return _zero_state(op, heights, hmax, scale, 0.0, row_start)
+            return _zero_state(op, hp, scale, 0.0, row_start)
         start = float(mean_pressure)
     else:
         interference = np.maximum(hp + penetration, 0.0)
         if not op.allsum(float(interference.any()))[0]:
-            return _zero_state(op, heights, hmax, scale, float(penetration), row_start)
+            return _zero_state(op, hp, scale, float(penetration), row_start)
         start = interference / self_compliance
     transforms = op.iteration_transforms(hp)
     p, masked, t = transforms.pressure, transforms.residual, transforms.direction
@@ -148,7 +167,6 @@ def solve_polonsky_keer(op: DistributedCompliance, heights: np.ndarray, *, mean_
                 psum, n_contact = op.allsum(float(p.sum()), float(np.count_nonzero(contact)))
                 n_contact, restart = int(n_contact), True
             factor = mean_pressure * n / psum
-    transforms.release_offset()
     # the answer in the transforms' own buffers, as the serial solver returns it: no grid-sized copies at the peak
     pressure, gap = p, w
     pressure *= factor
@@ -157,10 +175,11 @@ def solve_polonsky_keer(op: DistributedCompliance, heights: np.ndarray, *, mean_
     return state(pressure, gap, approach, it, residual, displacement=masked)
 
 
-def _zero_state(op, heights, hmax, scale, penetration, row_start) -> LocalState:
+def _zero_state(op, hp, scale, penetration, row_start) -> LocalState:
+    """No pressure: the gap of the undeformed surface (``-hp`` is the serial ``max(h) - h``, bit for bit)."""
     n = op.shape[0] * op.shape[1]
-    g = hmax - heights - penetration
+    g = -hp - penetration
     pen = float(op.allsum(float(np.sum(np.maximum(-g, 0.0))))[0]) / n / scale
-    return LocalState(pressure=np.zeros_like(heights), gap=g, displacement=np.zeros_like(heights),
+    return LocalState(pressure=np.zeros_like(hp), gap=g, displacement=np.zeros_like(hp),
                       penetration=penetration, mean_pressure=0.0, contact_area=0.0, iterations=0, residual=pen,
                       converged=True, solver="polonsky-keer", row_start=row_start, shape=op.shape)

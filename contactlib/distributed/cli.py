@@ -98,7 +98,7 @@ def solve(args) -> int:
     try:
         state = distributed_solve(heights.values, comm=comm, E=args.E, nu=args.nu, length=lengths, periodic=periodic,
                                   mean_pressure=args.mean_pressure, penetration=args.penetration, tol=args.tol,
-                                  max_iter=args.max_iter, progress=progress)
+                                  max_iter=args.max_iter, progress=progress, overwrite_heights=True)
     except ConvergenceError as err:
         _log(comm, f"contactlib solve: {err}")
         state, status = err.state, 3

@@ -25,7 +25,7 @@ def solve_periodic_displacement(op: DistributedCompliance, heights: np.ndarray, 
     hp = heights - hmax
     scale = global_height_scale(op, heights)
     if not op.allsum(float(np.any(hp + penetration > 0)))[0]:
-        return _zero_state(op, heights, hmax, scale, float(penetration), row_start)
+        return _zero_state(op, hp, scale, float(penetration), row_start)
     mean_gap = float(-op.allsum(float(np.sum(hp)))[0] / n - penetration)
     if mean_gap <= 0:
         raise ValueError(f"penetration {penetration!r} reaches full contact (mean gap {mean_gap:.3e} <= 0): a "
@@ -53,6 +53,7 @@ def solve_periodic_displacement(op: DistributedCompliance, heights: np.ndarray, 
 
     dual = solve_polonsky_keer(stiffness, dual_heights, mean_pressure=mean_gap, tol=tol, max_iter=max_iter,
                                restart_fraction=0.0, verify=lambda s: primal(s).residual, progress=progress,
+                               overwrite_heights=True,
                                row_start=row_start)
     answer = primal(dual)
     return dataclasses.replace(answer, converged=bool(dual.residual <= tol and answer.residual <= tol))

@@ -16,7 +16,8 @@ from .slabs import Slabs
 
 def solve(heights, *, comm, E: float, nu: float, length=None, periodic: bool = True,
           mean_pressure: float | None = None, penetration: float | None = None, tol: float = 1e-8,
-          max_iter: int = 10_000, progress: Callable[[int, float], None] | None = None) -> LocalState:
+          max_iter: int = 10_000, progress: Callable[[int, float], None] | None = None,
+          overwrite_heights: bool = False) -> LocalState:
     """Frictionless contact of a rigid rough surface on an elastic half-space, over the ranks of ``comm``.
 
     The distributed counterpart of :func:`contactlib.solve` for a 2D elastic half-space with the spectral
@@ -44,6 +45,9 @@ def solve(heights, *, comm, E: float, nu: float, length=None, periodic: bool = T
         Target of :func:`contactlib.solvers.contact_residual` and iteration bound.
     progress : callable, optional
         ``progress(iteration, residual)`` on every rank after each residual evaluation.
+    overwrite_heights : bool
+        Let the solve reuse the heights' buffer (a float64 C-contiguous array) for the heights below their
+        maximum: one field less per rank (the command line does; the caller's array is then changed).
 
     Returns
     -------
@@ -91,7 +95,8 @@ def solve(heights, *, comm, E: float, nu: float, length=None, periodic: bool = T
                                             progress=progress, row_start=row_start)
     else:
         state = solve_polonsky_keer(op, local, mean_pressure=mean_pressure, penetration=penetration, tol=tol,
-                                    max_iter=max_iter, progress=progress, row_start=row_start)
+                                    max_iter=max_iter, progress=progress, row_start=row_start,
+                                    overwrite_heights=overwrite_heights and local is heights)
     if not periodic:
         _check_window(op, state.pressure, row_start)
     if not state.converged:

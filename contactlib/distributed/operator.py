@@ -33,13 +33,19 @@ def _weighted_power(spectrum, multiplier, weights, scale_after):
 
 
 @numba.njit(cache=True, nogil=True, boundscheck=False)
-def _affine(spectrum, multiplier, offset, offset_scale):
-    """``S = S M - offset_scale * offset`` in place (``offset`` may be a 1x1 dummy when ``offset_scale`` is 0)."""
-    use = offset_scale != 0.0
+def _scale(spectrum, multiplier):
+    """``S *= M`` in place."""
     for i in range(spectrum.shape[0]):
         for j in range(spectrum.shape[1]):
-            v = spectrum[i, j] * multiplier[i, j]
-            spectrum[i, j] = v - offset_scale * offset[i, j] if use else v
+            spectrum[i, j] = spectrum[i, j] * multiplier[i, j]
+
+
+@numba.njit(cache=True, nogil=True, boundscheck=False)
+def _subtract_scaled(field, offset, offset_scale):
+    """``field -= offset_scale * offset`` in place (2D, possibly strided views)."""
+    for i in range(field.shape[0]):
+        for j in range(field.shape[1]):
+            field[i, j] -= offset_scale * offset[i, j]
 
 
 class DistributedCompliance:
@@ -133,7 +139,9 @@ class DistributedTransforms:
     """The transforms of one solve: :class:`contactlib.operators.IterationTransforms` on slabs.
 
     :attr:`pressure`, :attr:`residual` and :attr:`direction` are this rank's rows in the transforms' input
-    buffers; the offset (the heights below their maximum) is subtracted from the displacement in Fourier space.
+    buffers. The offset (the heights below their maximum) is subtracted from the displacement in real space, one
+    pass over the rows, where the serial transforms keep its spectrum: a field less per rank, the memory that
+    decides how large a grid fits (the results agree to round-off).
     """
 
     def __init__(self, operator: DistributedCompliance, offset_local: np.ndarray):
@@ -142,15 +150,15 @@ class DistributedTransforms:
         for name in ("pressure", "residual", "direction"):
             plan.buffers[name].fill(0.0)
         self.pressure, self.residual, self.direction = (plan.field(k) for k in ("pressure", "residual", "direction"))
-        self.direction[...] = offset_local
-        self._offset = plan.forward("direction") / operator.count
-        self.direction.fill(0.0)
+        self._offset = offset_local
 
     def displacement(self, offset_scale: float = 0.0) -> np.ndarray:
         """``K pressure - offset_scale * offset`` on this rank's rows (a view)."""
-        spectrum = self.op.plan.forward("pressure")
-        _affine(spectrum, self.op.multiplier, self._offset, float(offset_scale))
-        return self.op.plan.inverse("displacement")
+        _scale(self.op.plan.forward("pressure"), self.op.multiplier)
+        out = self.op.plan.inverse("displacement")
+        if offset_scale != 0.0:
+            _subtract_scaled(out, self._offset, float(offset_scale))
+        return out
 
     def precondition(self) -> tuple[np.ndarray, float]:
         """``(P residual, <residual, P residual>)``: this rank's rows, and the sum over the whole grid."""
@@ -163,10 +171,6 @@ class DistributedTransforms:
         spectrum = self.op.plan.forward("direction")
         return float(self.op.allsum(_weighted_power(spectrum, self.op.multiplier, self.op.weights, False))[0])
 
-    def release_offset(self) -> None:
-        """Drop the offset's spectrum (the memory peak is at the end of a solve)."""
-        self._offset = np.zeros((1, 1), dtype=complex)
-
 
 def apply(op: DistributedCompliance, field: np.ndarray, multiplier: np.ndarray | None = None) -> np.ndarray:
     """``K field`` on this rank's rows (a new array), on transform buffers of their own: safe in the middle of
@@ -176,8 +180,7 @@ def apply(op: DistributedCompliance, field: np.ndarray, multiplier: np.ndarray |
         plan = op._aside = SlabFFT(op.comm, op.shape, padded=not op.periodic)
     plan.buffers["field"].fill(0.0)
     plan.field("field")[...] = field
-    spectrum = plan.forward("field")
-    _affine(spectrum, op.multiplier if multiplier is None else multiplier, np.zeros((1, 1), dtype=complex), 0.0)
+    _scale(plan.forward("field"), op.multiplier if multiplier is None else multiplier)
     return plan.inverse("field").copy()
 
 
