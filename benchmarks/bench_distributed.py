@@ -112,9 +112,14 @@ def main(argv=None) -> int:
     ap.add_argument("--max-iter", type=int, default=10_000)
     ap.add_argument("--skip-one-rank", action="store_true")
     ap.add_argument("--surface", help="prepared surface file (default: made in /tmp)")
+    ap.add_argument("--effort", help="FFTW planner effort of every run (default: contactlib's, FFTW_MEASURE)")
     ap.add_argument("--_run", choices=("serial", "distributed"), help=argparse.SUPPRESS)
     args = ap.parse_args(argv)
     surface = args.surface or f"/tmp/bench_distributed_{args.n}.nc"
+    if args.effort:
+        from contactlib.fft import set_fft_options
+
+        set_fft_options(effort=args.effort)
     if args._run:
         run = run_serial if args._run == "serial" else run_distributed
         result = run(surface, args.mean_pressure, args.tol, args.max_iter)
@@ -131,6 +136,7 @@ def main(argv=None) -> int:
         del h
     common = [__file__, "--n", str(args.n), "--mean-pressure", str(args.mean_pressure), "--tol", str(args.tol),
               "--max-iter", str(args.max_iter), "--surface", surface]
+    common += ["--effort", args.effort] if args.effort else []
     runs = [[sys.executable, *common, "--_run", "serial"]]
     for ranks in ([] if args.skip_one_rank else [1]) + [2]:
         runs.append(["mpiexec", "-n", str(ranks), sys.executable, *common, "--_run", "distributed"])

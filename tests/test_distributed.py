@@ -25,8 +25,8 @@ except ImportError:
     HAVE_MPI = False
 
 # Open MPI refuses to run as root (containers, CI) without these; harmless otherwise
-MPI_ENV = {"OMPI_ALLOW_RUN_AS_ROOT": "1", "OMPI_ALLOW_RUN_AS_ROOT_CONFIRM": "1", "OMPI_MCA_rmaps_base_oversubscribe": "1",
-           "OMP_NUM_THREADS": "1"}
+MPI_ENV = {"OMPI_ALLOW_RUN_AS_ROOT": "1", "OMPI_ALLOW_RUN_AS_ROOT_CONFIRM": "1",
+           "OMPI_MCA_rmaps_base_oversubscribe": "1", "OMP_NUM_THREADS": "1"}
 ROOT = Path(__file__).resolve().parents[1]
 
 SHAPES = [(64, 64), (65, 64)]  # an odd number of rows, not divisible by 2 or 3

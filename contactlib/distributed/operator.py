@@ -1,4 +1,4 @@
-"""The elastic half-space's compliance on slabs: the distributed counterpart of :class:`contactlib.operators.Compliance`.
+"""The elastic half-space's compliance on slabs: the distributed :class:`contactlib.operators.Compliance`.
 
 Kernels are pure functions of the wavevectors, so each rank evaluates them on its own spectral columns:
 periodic, the continuous multiplier ``2 / (E* |q|)`` (:func:`contactlib.kernels.elastic.halfspace_spectral_multiplier`);
