@@ -122,6 +122,17 @@ def _worker(out_path: str) -> None:
             results["surface"].append({"case": str(spec), "identical": bool(np.array_equal(whole, ref.values)),
                                        "max_difference": float(np.abs(whole - ref.values).max()),
                                        "same_attrs": local.attrs == ref.attrs})
+    # the normalisation's sums: numpy's rounding, bit for bit, where a plain sum of the ranks' sums is not
+    from contactlib.distributed.reduce import pairwise_sum
+
+    results["sums"] = []
+    for shape in [(63, 64), (65, 47), (1031, 7), (3, 5)]:
+        values = np.random.default_rng(3).standard_normal(shape) * 10 ** np.random.default_rng(4).uniform(-3, 3, shape)
+        start, stop = Slabs(shape[0], comm.size).bounds(comm.rank)
+        exact = pairwise_sum(comm, values[start:stop], start * shape[1], values.size)
+        naive = comm.allreduce(float(np.sum(values[start:stop])))
+        results["sums"].append({"shape": shape, "exact": exact == float(np.sum(values)),
+                                "naive_differs": naive != float(np.sum(values))})
     # refusals and failures, named
     heights, lengths = _scene((64, 64), True)
     wrong = heights[: 3 + comm.rank]  # rows that are not this rank's slab
@@ -213,6 +224,15 @@ def test_surface_bit_for_bit(run):
     ranks, results = run
     for case in results["surface"]:
         assert case["identical"] and case["max_difference"] == 0.0 and case["same_attrs"], case
+
+
+def test_sums_round_as_numpy(run):
+    """The distributed pairwise sum equals numpy's sum of the whole array bit for bit (on more than one rank, a
+    plain sum of the ranks' sums does not, on some of these arrays: the test can tell them apart)."""
+    ranks, results = run
+    assert all(case["exact"] for case in results["sums"]), results["sums"]
+    if ranks > 1:
+        assert any(case["naive_differs"] for case in results["sums"]), results["sums"]
 
 
 def test_refusals_and_nonconvergence(run):
