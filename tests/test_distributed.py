@@ -91,6 +91,26 @@ def _worker(out_path: str) -> None:
                         "penetration": state.penetration, "penetration_serial": float(ref.penetration),
                         "iterations": state.iterations, "iterations_serial": int(ref.iterations),
                         "residual": state.residual, "converged": state.converged})
+    # layers (periodic, frictionless): confined, remote-pressure (displacement control through the dual), and one
+    # thick enough to be solved as the half-space with its uniform compression
+    heights, lengths = _scene((65, 64), True)
+    results["layers"] = []
+    for thickness, base in [(0.1, "confined"), (0.5, "remote_pressure"), (50.0, "confined")]:
+        layer = contactlib.Layer(thickness, base)
+        for kind in LOADS:
+            load = _load(kind, True, heights)
+            state = solve(slab_of(heights, comm), comm=comm, E=1.0, nu=0.3, length=lengths, tol=1e-10, layer=layer,
+                          **load)
+            pressure = gather_field(state.pressure, comm)
+            if comm.rank == 0:
+                ref = contactlib.solve(heights, E=1.0, nu=0.3, length=lengths, tol=1e-10, layer=layer, **load)
+                p_ref = ref.pressure.values
+                results["layers"].append({
+                    "case": f"{layer} {kind} ({ref.attrs['model']})",
+                    "pressure_error": float(np.abs(pressure - p_ref).max() / p_ref.max()),
+                    "same_contact_set": bool(np.array_equal(pressure > 0, p_ref > 0)),
+                    "penetration": state.penetration, "penetration_serial": float(ref.penetration),
+                    "area": state.contact_area, "area_serial": float(ref.contact_area)})
     # a surface given by its generator's arguments: each rank makes its own rows
     spec = dict(n=64, hurst=0.8, q_roll=2, q_cutoff=16, rms_slope=0.1, seed=4)
     state = solve(spec, comm=comm, E=1.0, nu=0.3, mean_pressure=0.05, tol=1e-10)
@@ -143,6 +163,8 @@ def _worker(out_path: str) -> None:
                                     mean_pressure=0.05, penetration=0.01),
         "edge": lambda: solve(slab_of(heights, comm), comm=comm, E=1.0, nu=0.3, length=lengths, periodic=False,
                               mean_pressure=0.05),
+        "plate": lambda: solve(slab_of(heights, comm), comm=comm, E=1.0, nu=0.3, length=lengths, mean_pressure=0.05,
+                               layer=contactlib.Layer(0.01, "remote_pressure")),
         "max_iter": lambda: solve(slab_of(heights, comm), comm=comm, E=1.0, nu=0.3, length=lengths,
                                   mean_pressure=0.05, max_iter=2),
     }.items():
@@ -193,6 +215,17 @@ def test_solve_matches_serial(run):
         assert abs(case["iterations"] - case["iterations_serial"]) <= 1, case
 
 
+def test_layers_match_serial(run):
+    """A periodic frictionless layer: confined, remote-pressure, and one reduced to the half-space, under load and
+    displacement control, as the serial solver (pressure within 1e-10 of its peak, same contact set and area)."""
+    ranks, results = run
+    assert len(results["layers"]) == 6
+    for case in results["layers"]:
+        assert case["pressure_error"] < 1e-10 and case["same_contact_set"], case
+        assert case["area"] == case["area_serial"], case
+        assert abs(case["penetration"] - case["penetration_serial"]) <= 1e-10 * abs(case["penetration_serial"]), case
+
+
 def test_solve_from_surface_arguments(run):
     """Heights given as the generator's arguments: each rank generates its rows; the serial answer on that surface."""
     ranks, results = run
@@ -241,6 +274,7 @@ def test_refusals_and_nonconvergence(run):
     assert errors["length"].startswith("ValueError: length"), errors
     assert "mean_pressure or penetration" in errors["both_loads"], errors
     assert "edge of the window" in errors["edge"], errors
+    assert errors["plate"].startswith("ValueError: layer: a plate-like layer"), errors
     assert errors["max_iter"].startswith("ConvergenceError residual=") and "iterations=2" in errors["max_iter"], errors
     if ranks > 1:  # on one rank every array is that rank's slab
         assert errors["rows"].startswith("ValueError: heights"), errors

@@ -17,7 +17,7 @@ from .slabs import Slabs
 def solve(heights, *, comm, E: float, nu: float, length=None, periodic: bool = True,
           mean_pressure: float | None = None, penetration: float | None = None, tol: float = 1e-8,
           max_iter: int = 10_000, progress: Callable[[int, float], None] | None = None,
-          overwrite_heights: bool = False) -> LocalState:
+          overwrite_heights: bool = False, layer=None) -> LocalState:
     """Frictionless contact of a rigid rough surface on an elastic half-space, over the ranks of ``comm``.
 
     The distributed counterpart of :func:`contactlib.solve` for a 2D elastic half-space with the spectral
@@ -45,6 +45,10 @@ def solve(heights, *, comm, E: float, nu: float, length=None, periodic: bool = T
         Target of :func:`contactlib.solvers.contact_residual` and iteration bound.
     progress : callable, optional
         ``progress(iteration, residual)`` on every rank after each residual evaluation.
+    layer : contactlib.Layer, optional
+        A periodic, frictionless layer instead of the half-space (its compliance on each rank's spectral columns,
+        :mod:`.layer`; reduced to the half-space where it is within tolerance of it, as :func:`contactlib.solve`
+        does). A plate-like layer (the serial semismooth solver's) and a non-periodic one are refused.
     overwrite_heights : bool
         Let the solve reuse the heights' buffer (a float64 C-contiguous array) for the heights below their
         maximum: one field less per rank (the command line does; the caller's array is then changed).
@@ -89,8 +93,9 @@ def solve(heights, *, comm, E: float, nu: float, length=None, periodic: bool = T
         raise ValueError(f"heights: rank r must hold rows Slabs({nx}, {comm.Get_size()}).slice(r) of one grid, "
                          f"got (rows, columns) {rows}")
     row_start = int(Slabs(nx, comm.Get_size()).starts[comm.Get_rank()])
-    op = DistributedCompliance(comm, (nx, ny), lengths, E_star=E_star, periodic=periodic)
-    if periodic and penetration is not None:
+    op = DistributedCompliance(comm, (nx, ny), lengths, E_star=E_star, periodic=periodic, layer=layer, E=E, nu=nu,
+                               tol=tol)
+    if not op.definite and penetration is not None:
         state = solve_periodic_displacement(op, local, penetration=penetration, tol=tol, max_iter=max_iter,
                                             progress=progress, row_start=row_start)
     else:

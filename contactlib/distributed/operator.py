@@ -64,9 +64,12 @@ class DistributedCompliance:
         Periodic window, or an isolated one (zero-padded transform on the doubled box).
     """
 
-    def __init__(self, comm, shape, lengths, *, E_star: float, periodic: bool = True):
+    def __init__(self, comm, shape, lengths, *, E_star: float, periodic: bool = True, layer=None,
+                 E: float | None = None, nu: float | None = None, tol: float = 1e-8):
         self.comm, self.shape, self.lengths = comm, tuple(shape), tuple(float(v) for v in lengths)
         self.E_star, self.periodic = float(E_star), bool(periodic)
+        if layer is not None and not self.periodic:
+            raise ValueError("layer: a distributed layer is periodic (periodic=True); solve a non-periodic one serially")
         # periodic, the preconditioned residual overwrites the spent residual's buffer (as in the serial transforms)
         self.plan = SlabFFT(comm, self.shape, padded=not self.periodic,
                             inputs=("pressure", "residual", "direction"), outputs=("displacement", "preconditioned"))
@@ -77,6 +80,15 @@ class DistributedCompliance:
         self.weights = self.plan.parseval_weights()
         qx, qy = self.plan.wavevectors(self.lengths)
         q = np.sqrt(qx**2 + qy**2)
+        lowest = 2 * np.pi / (self.work_shape[1] * self.lengths[1] / self.shape[1])
+        self.model = "half-space"
+        if layer is not None:
+            from .layer import layer_transfer
+
+            transfer, self.model = layer_transfer(comm, q, E=E, nu=nu, layer=layer, tol=tol,
+                                                  column_start=self.plan.column_start)
+            self._set_transfer(transfer, q)
+            return
         if self.periodic:
             transfer = np.zeros_like(q)
             np.divide(2.0, self.E_star * q, out=transfer, where=q > 0)
@@ -84,11 +96,39 @@ class DistributedCompliance:
             transfer = self._point_influence_spectrum()
         self.multiplier = np.ascontiguousarray(transfer / self.count)
         # the preconditioner: the continuous stiffness E*|q|/2, its zero mode given the lowest wavenumber's value
-        lowest = 2 * np.pi / (self.work_shape[1] * self.lengths[1] / self.shape[1])
         q[q == 0] = lowest
         self.inverse_multiplier = np.ascontiguousarray(self.E_star * q / 2 / self.count)
         self._softest = self.E_star * lowest / 2
         self.definite = not self.periodic
+
+    def _set_transfer(self, transfer: np.ndarray, q: np.ndarray) -> None:
+        """A spectral compliance other than the half-space's (a layer's): preconditioned by its exact inverse, its
+        zero mode, if without stiffness, given the ``(0, 1)`` mode's, as the serial operator does; refused where
+        the serial solver would leave the CG (a plate-like layer:
+        :data:`contactlib.operators.PRECONDITION_SOFTENING`)."""
+        from mpi4py import MPI  # the distributed path only
+
+        from ..operators import PRECONDITION_SOFTENING
+
+        nonzero = q > 0
+        local = float(np.max(transfer[nonzero] * self.E_star * q[nonzero] / 2)) if nonzero.any() else 0.0
+        if self.comm.allreduce(local, op=MPI.MAX) > PRECONDITION_SOFTENING:
+            raise ValueError("layer: a plate-like layer (softer than the half-space by more than "
+                             f"{PRECONDITION_SOFTENING}x at some wavevector) needs the serial semismooth solver; "
+                             "run it without MPI")
+        self.multiplier = np.ascontiguousarray(transfer / self.count)
+        stiffness = np.zeros_like(transfer)
+        np.divide(1.0, transfer, out=stiffness, where=transfer > 0)
+        owner = self.plan.column_start == 0
+        first = float(self.allsum(float(stiffness[0, 1]) if self.plan.column_start <= 1 < self.plan.column_stop
+                                  else 0.0)[0])
+        softest = stiffness[nonzero].min() if nonzero.any() else np.inf
+        self._softest = float(self.comm.allreduce(float(softest), op=MPI.MIN))
+        zero_mode = float(self.allsum(float(transfer[0, 0]) if owner else 0.0)[0])
+        if owner and stiffness[0, 0] == 0:
+            stiffness[0, 0] = first
+        self.inverse_multiplier = np.ascontiguousarray(stiffness / self.count)
+        self.definite = zero_mode > 0
 
     def _point_influence_spectrum(self) -> np.ndarray:
         """The spectrum of the collocated point-load coefficients on the doubled box, from this rank's rows of
