@@ -69,7 +69,8 @@ class DistributedCompliance:
         self.comm, self.shape, self.lengths = comm, tuple(shape), tuple(float(v) for v in lengths)
         self.E_star, self.periodic = float(E_star), bool(periodic)
         if layer is not None and not self.periodic:
-            raise ValueError("layer: a distributed layer is periodic (periodic=True); solve a non-periodic one serially")
+            raise ValueError("layer: a distributed layer is periodic (periodic=True); solve a non-periodic one "
+                             "serially")
         # periodic, the preconditioned residual overwrites the spent residual's buffer (as in the serial transforms)
         self.plan = SlabFFT(comm, self.shape, padded=not self.periodic,
                             inputs=("pressure", "residual", "direction"), outputs=("displacement", "preconditioned"))
