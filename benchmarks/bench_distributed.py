@@ -14,7 +14,7 @@ reached by the first iteration and at the end), not a time to solution.
 
 Communication per iteration (measured, and by construction): the loop runs five distributed transforms per
 iteration (``K p`` forward and inverse, the preconditioner forward and inverse, ``<t, K t>`` forward), each one
-``Alltoallv`` in which a rank sends ``(P - 1) / P`` of its share of the half-spectrum: ``16 (N/2 + 1) N / P``
+``Alltoallw`` in which a rank sends ``(P - 1) / P`` of its share of the half-spectrum: ``16 (N/2 + 1) N / P``
 bytes a rank, about ``8 N^2 (P - 1) / P^2``. So per iteration each rank sends about ``40 N^2 (P-1) / P^2`` bytes,
 the whole job ``40 N^2 (P - 1) / P`` bytes (zero-padded: the padded rows are never sent, the work box's columns
 are twice as many: twice that). The ``Allreduce`` of the sweeps' sums (six per iteration, at most four numbers)
