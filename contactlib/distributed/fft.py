@@ -3,8 +3,8 @@
 A real field is split by rows (:class:`.slabs.Slabs`), its half-spectrum by columns. The forward
 transform is pyFFTW's ``rfft`` along the contiguous axis of each rank's rows, a global transpose by
 ``MPI_Alltoallw`` on subarray datatypes (each rank sends every other one the block of its rows in that rank's
-columns, without packing), then the ``fft`` along the rows' axis of the rank's columns, in place. The inverse runs the same steps
-backwards. Both are unnormalised, as the solvers' FFTW plans are: forward then inverse multiplies by the
+columns, without packing), then the ``fft`` along the rows' axis of the rank's columns, in place. The inverse
+runs the same steps backwards. Both are unnormalised, as the solvers' FFTW plans are: forward then inverse multiplies by the
 number of points, which :func:`contactlib.fft.convolution_multiplier` folds into the kernels. Rank ``r``'s
 spectral slab is ``rfftn(field)[:, c0:c1]`` of the whole field, to FFTW's rounding.
 
