@@ -1,12 +1,12 @@
 """Distributed real-to-complex 2D FFT on slabs: the serial convention of :mod:`contactlib.fft` over MPI ranks.
 
-A real field is split by rows (:class:`.slabs.Slabs`), its half-spectrum by columns. The forward
-transform is pyFFTW's ``rfft`` along the contiguous axis of each rank's rows, a global transpose by
-``MPI_Alltoallw`` on subarray datatypes (each rank sends every other one the block of its rows in that rank's
-columns, without packing), then the ``fft`` along the rows' axis of the rank's columns, in place. The inverse
-runs the same steps backwards. Both are unnormalised, as the solvers' FFTW plans are: forward then inverse multiplies by the
-number of points, which :func:`contactlib.fft.convolution_multiplier` folds into the kernels. Rank ``r``'s
-spectral slab is ``rfftn(field)[:, c0:c1]`` of the whole field, to FFTW's rounding.
+A real field is split by rows (:class:`.slabs.Slabs`), its half-spectrum by columns. The forward transform is
+pyFFTW's ``rfft`` along the contiguous axis of each rank's rows, a global transpose by ``MPI_Alltoallw`` on
+subarray datatypes (each rank sends every other one the block of its rows in that rank's columns, without packing),
+then the ``fft`` along the rows' axis of the rank's columns, in place. The inverse runs the same steps backwards.
+Both are unnormalised, as the solvers' FFTW plans are: forward then inverse multiplies by the number of points,
+which :func:`contactlib.fft.convolution_multiplier` folds into the kernels. Rank ``r``'s spectral slab is
+``rfftn(field)[:, c0:c1]`` of the whole field, to FFTW's rounding.
 
 A zero-padded (non-periodic) transform on the doubled ``(2 nx, 2 ny)`` box keeps only the field's ``nx``
 rows in real space: the padding rows are zero going in and unwanted coming out, so they are neither stored
