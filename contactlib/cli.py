@@ -13,6 +13,7 @@ from . import surfaces
 from ._version import __version__
 from .model.bodies import Layer
 from .problems.contact import ConvergenceError, solve
+from .distributed.launch import launched_ranks
 
 
 def _write(ds: xr.Dataset | xr.DataArray, path: str) -> None:
@@ -24,6 +25,10 @@ def _write(ds: xr.Dataset | xr.DataArray, path: str) -> None:
 
 
 def _surface(args) -> int:
+    if launched_ranks() > 1:  # under mpirun: each rank generates and writes its rows
+        from .distributed import cli as distributed_cli
+
+        return distributed_cli.surface(args, _synthetic_length)
     if args.source is not None:
         h = _read(args, args.source, args.detrend or "plane")
     else:
@@ -57,6 +62,10 @@ def _read(args, path: str, detrend: str) -> xr.DataArray:
 
 
 def _solve(args) -> int:
+    if launched_ranks() > 1:  # under mpirun: a distributed solve, each rank holding its rows
+        from .distributed import cli as distributed_cli
+
+        return distributed_cli.solve(args)
     if args.variable != "height":  # another variable of a NetCDF file, taken as it is
         with xr.open_dataset(args.surface) as ds:
             heights = ds[args.variable].load()

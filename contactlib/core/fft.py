@@ -104,11 +104,11 @@ def export_wisdom() -> tuple[bytes, ...]:
 def import_wisdom(wisdom: tuple[bytes, ...]) -> None:
     """Import FFTW wisdom (e.g. a parent's :func:`export_wisdom`) on top of the on-disk cache,
     which is read first so that the given plans are the last word."""
-    _load_wisdom_once()
+    load_wisdom_once()
     pyfftw.import_wisdom(wisdom)
 
 
-def _load_wisdom_once() -> None:
+def load_wisdom_once() -> None:
     global _wisdom_loaded
     with _wisdom_lock:
         if _wisdom_loaded:
@@ -122,7 +122,7 @@ def _load_wisdom_once() -> None:
             pass
 
 
-def _save_wisdom() -> None:
+def save_wisdom() -> None:
     path = wisdom_path()
     try:
         path.parent.mkdir(parents=True, exist_ok=True)
@@ -141,7 +141,7 @@ class RealFFT:
     """
 
     def __init__(self, shape: tuple[int, ...], threads: int, effort: str):
-        _load_wisdom_once()
+        load_wisdom_once()
         spectral = tuple(shape[:-1]) + (shape[-1] // 2 + 1,)
         self.shape = tuple(shape)
         self.real = pyfftw.empty_aligned(shape, dtype="float64")
@@ -153,7 +153,7 @@ class RealFFT:
             flags=(effort, "FFTW_DESTROY_INPUT"), threads=threads,
         )
         if effort != "FFTW_ESTIMATE":
-            _save_wisdom()
+            save_wisdom()
 
     def forward(self) -> np.ndarray:
         self._fwd.execute()
@@ -191,7 +191,7 @@ class SharedSpectrum:
 
     def __init__(self, shape: tuple[int, ...], threads: int, effort: str, inputs: tuple[str, ...],
                  outputs: dict[str, str | None]):
-        _load_wisdom_once()
+        load_wisdom_once()
         self.shape = tuple(shape)
         spectral = self.shape[:-1] + (self.shape[-1] // 2 + 1,)
         self.spectrum = pyfftw.empty_aligned(spectral, dtype="complex128")
@@ -207,7 +207,7 @@ class SharedSpectrum:
         for buffer in self.buffers.values():
             buffer.fill(0.0)
         if effort != "FFTW_ESTIMATE":
-            _save_wisdom()
+            save_wisdom()
 
     def forward(self, name: str) -> np.ndarray:
         self._forward[name].execute()

@@ -100,7 +100,7 @@ def padded_offsets(grid: Grid) -> tuple[np.ndarray, ...]:
     return (out[0],)
 
 
-def _love_rectangle(x: np.ndarray, y: np.ndarray) -> np.ndarray:
+def love_rectangle(x: np.ndarray, y: np.ndarray) -> np.ndarray:
     """``x asinh(y/|x|) + y asinh(x/|y|)``: Love's primitive with the ``x ln|x|`` parts cancelled."""
     with np.errstate(divide="ignore", invalid="ignore"):
         a = np.where(x != 0, x * np.arcsinh(y / np.abs(x)), 0.0)
@@ -125,8 +125,8 @@ def halfspace_love_influence(grid: Grid, E_star: float) -> np.ndarray:
     if grid.dim == 2:
         x, y = off
         a, b = grid.spacing[0] / 2, grid.spacing[1] / 2
-        u = (_love_rectangle(x + a, y + b) - _love_rectangle(x + a, y - b)
-             - _love_rectangle(x - a, y + b) + _love_rectangle(x - a, y - b))
+        u = (love_rectangle(x + a, y + b) - love_rectangle(x + a, y - b)
+             - love_rectangle(x - a, y + b) + love_rectangle(x - a, y - b))
         return u / (np.pi * E_star)
     (x,) = off
     a = grid.spacing[0] / 2

@@ -15,7 +15,7 @@ from ..core.labels import attrs_for
 from . import preparation, readers
 
 # attrs that describe one reading; a file written from an earlier reading carries them, and they are renewed
-_PROVENANCE = ("source_file", "source_sha256", "source_format", "source_reader", "height_unit", "length",
+PROVENANCE = ("source_file", "source_sha256", "source_format", "source_reader", "height_unit", "length",
                "length_from", "periodic", "detrend", "detrend_offset", "detrend_slope_x", "detrend_slope_y", "fill",
                "filled_points")
 
@@ -89,8 +89,8 @@ def read(path, *, length=None, unit: str | None = None, periodic: bool | None = 
     if values.ndim not in (1, 2) or min(values.shape) < 2:
         raise ValueError(f"{path}: heights of shape {values.shape}; need a profile or a map of at least 2 points "
                          "per axis")
-    unit = _resolve_unit(path, raw.unit, unit)
-    lengths, length_from = _resolve_lengths(path, raw.lengths, length, values.ndim, unit)
+    unit = resolve_unit(path, raw.unit, unit)
+    lengths, length_from = resolve_lengths(path, raw.lengths, length, values.ndim, unit)
     if np.isinf(values).any():
         raise ValueError(f"{path}: {int(np.isinf(values).sum())} heights are infinite")
     missing = int(np.isnan(values).sum())
@@ -114,16 +114,16 @@ def read(path, *, length=None, unit: str | None = None, periodic: bool | None = 
         filled = 0
 
     dims = ("x", "y")[: values.ndim]
-    attrs = {k: v for k, v in raw.attrs.items() if k not in _PROVENANCE}
+    attrs = {k: v for k, v in raw.attrs.items() if k not in PROVENANCE}
     attrs.update(attrs_for("height"))
-    attrs.update(source_file=path.name, source_sha256=_sha256(path), source_format=raw.format,
+    attrs.update(source_file=path.name, source_sha256=file_sha256(path), source_format=raw.format,
                  source_reader=raw.reader, height_unit=unit, length=list(lengths), length_from=length_from,
                  periodic=int(periodic), **trend, fill=fill or "none", filled_points=filled)
     return xr.DataArray(values, dims=dims, name="height", attrs=attrs,
                         coords={d: (d, c, attrs_for(d)) for d, c in zip(dims, coords)})
 
 
-def _resolve_unit(path: Path, file_unit: str | None, unit: str | None) -> str:
+def resolve_unit(path: Path, file_unit: str | None, unit: str | None) -> str:
     if file_unit is None and unit is None:
         raise ValueError(f"{path}: the file does not state its length unit; pass unit= (m, mm, um, nm, ...)")
     if file_unit is not None and unit is not None and _canonical(unit) != _canonical(file_unit):
@@ -138,7 +138,7 @@ def _canonical(unit: str) -> str:
     return {"µm": "um", "μm": "um", "micron": "um", "Å": "angstrom"}.get(unit, unit)
 
 
-def _resolve_lengths(path: Path, file_lengths, length, ndim: int, unit: str) -> tuple[tuple[float, ...], str]:
+def resolve_lengths(path: Path, file_lengths, length, ndim: int, unit: str) -> tuple[tuple[float, ...], str]:
     if length is None:
         if file_lengths is None:
             raise ValueError(f"{path}: the file does not carry its physical size; pass length= (in {unit}, one "
@@ -158,7 +158,7 @@ def _resolve_lengths(path: Path, file_lengths, length, ndim: int, unit: str) -> 
     return given, "argument"
 
 
-def _sha256(path: Path) -> str:
+def file_sha256(path: Path) -> str:
     digest = hashlib.sha256()
     with open(path, "rb") as f:
         for block in iter(lambda: f.read(1 << 20), b""):
