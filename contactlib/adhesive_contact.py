@@ -19,6 +19,7 @@ from . import resolution
 from .inputs import number
 from .labels import attrs_for
 from .solvers.cohesive import MAX_NEWTON, solve_cohesive
+from .solvers.cohesive_law import grid_law
 from .solvers.energy import EnergyFamily, check_symmetric, energy_family, growth_order
 from .solvers.state import ContactState, height_scale
 
@@ -37,6 +38,7 @@ class AdhesiveState(ContactState):
     repulsive_pressure: np.ndarray | None = None
     in_contact: np.ndarray | None = None
     notes: tuple = ()
+    law: object = None  # the cohesive law as solved on the grid (:class:`.solvers.cohesive_law.GridLaw`)
 
 
 def check(adhesion, values: np.ndarray, *, spacing, mean_pressure, penetration, friction, method, periodic) -> None:
@@ -72,11 +74,13 @@ def run(setup, adhesion: Adhesion, *, warm_penetration=None) -> AdhesiveState:
         return setup._symmetric(h, mean_pressure=mean_pressure, penetration=penetration, tol=tol,
                                 max_iter=max_iter, initial_pressure=initial_pressure)
 
-    state, p_r = solve_cohesive(setup.operator, setup.values, adhesion=adhesion,
+    law = grid_law(adhesion, setup.operator)  # a zone narrower than the grid holds: regularised, and said so
+    state, p_r = solve_cohesive(setup.operator, setup.values, adhesion=law,
                                 mean_pressure=args["mean_pressure"], penetration=args["penetration"],
                                 tol=args["tol"], max_iter=MAX_NEWTON, initial_pressure=args["initial_pressure"],
                                 initial_penetration=warm_penetration, solve_repulsive=repulsive)
-    return AdhesiveState(**vars(state), repulsive_pressure=p_r, in_contact=p_r > 0)
+    return AdhesiveState(**vars(state), repulsive_pressure=p_r, in_contact=p_r > 0,
+                         notes=(law.note(),) if law.regularised else (), law=law)
 
 
 def family(setup, max_radius: float | None = None) -> EnergyFamily:

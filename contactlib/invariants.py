@@ -292,6 +292,8 @@ def adhesive_checks(state, heights: np.ndarray, adhesion, *, tol: float, mean_pr
     m = field_measures(state.pressure, state.gap, state.displacement, heights, state.penetration)
     p = state.pressure
     closed = state.in_contact
+    if getattr(state, "law", None) is not None:  # the cohesive law as solved on the grid (a regularised zone)
+        adhesion = state.law
     kinematic = state.displacement + (float(np.max(heights)) - heights) - state.penetration  # the gap, closed set too
     on_closed = float(np.max(np.abs(kinematic[closed]))) if np.any(closed) else 0.0
     mean_abs = float(np.mean(np.abs(p)))

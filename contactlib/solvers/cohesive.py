@@ -51,14 +51,13 @@ profile of 8192 points stopped 9 elements short of the contact width on the mean
 
 from __future__ import annotations
 
-import dataclasses
 from collections.abc import Callable
 
 import numpy as np
 
 from . import _cohesive_sweeps as sweeps
-from ..adhesion import MAUGIS_RAMP
 from .ccg import solve_polonsky_keer
+from .cohesive_law import grid_law
 from .cohesive_newton import GMRES_ITERATIONS, CohesiveNewton
 from .cohesive_rounds import Rounds
 from .state import ContactState
@@ -182,6 +181,7 @@ def solve_cohesive(
         names the method) and the repulsive part ``p_r`` [pressure].
     """
     load_control = mean_pressure is not None
+    adhesion = grid_law(adhesion, operator)  # Maugis' law as the grid resolves it (.cohesive_law)
     p = None if initial_pressure is None else np.array(initial_pressure, dtype=float)
     delta = initial_penetration if load_control else penetration
     result = None
@@ -204,7 +204,9 @@ def solve_cohesive(
 
     if result is None or not result[-1]:  # the frozen-traction iteration stalled: semi-smooth Newton
         method = "cohesive-newton"
-        if p is None:
+        if result is not None and np.isfinite(result[6]):  # the frozen traction's best state: near the answer
+            p, delta = result[0], result[1]
+        elif p is None:
             p, delta = _cold_start(operator, heights, adhesion, mean_pressure, penetration, solve_repulsive)
         if delta is None:
             delta = 0.0
@@ -212,7 +214,7 @@ def solve_cohesive(
     if not result[-1]:  # stalled: continuation in the range (8, 4, 2, 1 times), warm-started stage to stage
         p_c, d_c = p, delta
         for factor in RANGES:
-            result = newton(dataclasses.replace(adhesion, range=adhesion.range * factor), p_c, d_c)
+            result = newton(adhesion.replace(range=adhesion.range * factor), p_c, d_c)
             p_c, d_c = result[0], result[1]
     if not result[-1]:  # still stalled: continuation in the work of adhesion from the cold start
         result = _continuation(newton, adhesion,
@@ -240,7 +242,7 @@ def _frozen_continuation(operator, heights, adhesion, mean_pressure, penetration
     iterations, rounds, result = stalled[4], stalled[5], None
     for factor in FROZEN_RANGES:
         last = factor == FROZEN_RANGES[-1]
-        law = adhesion if last else dataclasses.replace(adhesion, range=adhesion.range * factor)
+        law = adhesion if last else adhesion.replace(range=adhesion.range * factor)
         stage = _FrozenTraction(operator, heights, law, mean_pressure, penetration,
                                 tol if last else max(tol, FROZEN_LOOSE_TOL), solve_repulsive,
                                 stall_rounds=FROZEN_STALL_ROUNDS)(p, delta)
@@ -259,7 +261,7 @@ def _continuation(newton, adhesion, p, delta):
     :data:`STAGES`)."""
     done, f, result = 0.0, FIRST_FRACTION, None
     for _ in range(STAGES):
-        trial = newton(dataclasses.replace(adhesion, work=adhesion.work * f), p, delta)
+        trial = newton(adhesion.replace(work=adhesion.work * f), p, delta)
         if trial[-1]:
             p, delta, done, result = trial[0], trial[1], f, trial
             if f == 1.0:
@@ -401,7 +403,7 @@ class _FrozenTraction:
         code = sweeps.MAUGIS if law.model == "maugis" else sweeps.EXPONENTIAL
         phi_sum, overlap, comp, weight, traction, interacting = sweeps.law_residual(
             np.ascontiguousarray(p).ravel(), np.ascontiguousarray(g).ravel(), code, law.peak_stress, law.range,
-            MAUGIS_RAMP, m.c, image.reshape(-1))
+            law.ramp, m.c, image.reshape(-1))
         residual = max(phi_sum / m.c, overlap, m.complementarity(comp, weight)) / (p.size * m.hs)
         residual = max(residual, m.law_term(phi_sum, traction, interacting))
         if m.control:
