@@ -74,11 +74,12 @@ def run(setup, adhesion: Adhesion, *, warm_penetration=None) -> AdhesiveState:
         return setup._symmetric(h, mean_pressure=mean_pressure, penetration=penetration, tol=tol,
                                 max_iter=max_iter, initial_pressure=initial_pressure)
 
-    law = grid_law(adhesion, setup.operator)  # a zone narrower than the grid holds: regularised, and said so
-    state, p_r = solve_cohesive(setup.operator, setup.values, adhesion=law,
+    report = {}  # the law solved: a zone narrower than the grid holds is regularised, and said so
+    state, p_r = solve_cohesive(setup.operator, setup.values, adhesion=grid_law(adhesion, setup.operator),
                                 mean_pressure=args["mean_pressure"], penetration=args["penetration"],
                                 tol=args["tol"], max_iter=MAX_NEWTON, initial_pressure=args["initial_pressure"],
-                                initial_penetration=warm_penetration, solve_repulsive=repulsive)
+                                initial_penetration=warm_penetration, solve_repulsive=repulsive, report=report)
+    law = report["law"]
     return AdhesiveState(**vars(state), repulsive_pressure=p_r, in_contact=p_r > 0,
                          notes=(law.note(),) if law.regularised else (), law=law)
 

@@ -25,7 +25,7 @@ E, NU, R, W = 1.0, 0.5, 1.0, 1e-4
 E_STAR = E / (1 - NU**2)
 K = 4 * E_STAR / 3
 N, LENGTH, PENETRATION = 128, 0.25, 0.002
-FORCE_GRID = 5e-3
+FORCE_GRID = 1e-2
 
 
 def law(lam):

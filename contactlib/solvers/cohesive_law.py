@@ -40,6 +40,11 @@ alone, 0.27 % from Maugis' force. The test suite's hard scenes (gain 0.42 at lam
 MAX_RAMP = 1.0
 """The widest ramp: from ``sigma_0`` at contact to 0 at twice the range (the work still ``w``)."""
 
+UNSTABLE_GAIN = 1.0
+"""Above this gain at :data:`~contactlib.adhesion.MAUGIS_RAMP` a point on the ramp is unstable by itself, and the ramp
+is widened from the start. Between :data:`RAMP_GAIN` and this, the law is solved as asked first and widened only if
+that fails (:meth:`GridLaw.widened`): the test suite's 160^2 sphere at lambda 3.4 (gain 0.60) converges as asked."""
+
 
 def element_compliance(operator) -> float:
     """The displacement [length] of an element under a unit pressure on it alone (the largest of the response to a
@@ -62,6 +67,7 @@ class GridLaw:
     ramp: float
     compliance: float
     stress_cap: float
+    fallback_ramp: float = MAUGIS_RAMP
 
     model = property(lambda self: self.solved.model)
     work = property(lambda self: self.solved.work)
@@ -82,7 +88,16 @@ class GridLaw:
 
     def replace(self, **changes) -> GridLaw:
         """The law with ``work`` or ``range`` changed (a continuation stage), set again for the grid."""
-        return _build(dataclasses.replace(self.adhesion, **changes), self.compliance, self.stress_cap)
+        law = _build(dataclasses.replace(self.adhesion, **changes), self.compliance, self.stress_cap)
+        wider = law.widened() if self.ramp > law.ramp else None  # widened here: widened there too
+        return law if wider is None else wider
+
+    def widened(self) -> GridLaw | None:
+        """The law with the ramp widened to a gain of :data:`RAMP_GAIN` where it was kept as asked (a gain between
+        that and :data:`UNSTABLE_GAIN`); None where there is nothing to widen."""
+        if self.fallback_ramp <= self.ramp:
+            return None
+        return dataclasses.replace(self, ramp=self.fallback_ramp)
 
     def traction(self, gap: np.ndarray) -> np.ndarray:
         """The adhesive traction ``-sigma(max(g, 0))`` [pressure] (:meth:`contactlib.Adhesion.traction`, this
@@ -106,13 +121,15 @@ class GridLaw:
 
 
 def _build(adhesion: Adhesion, compliance: float, stress_cap: float) -> GridLaw:
-    solved, ramp = adhesion, MAUGIS_RAMP
+    solved, ramp, fallback = adhesion, MAUGIS_RAMP, MAUGIS_RAMP
     if adhesion.model == "maugis":
         if adhesion.peak_stress > stress_cap:
             solved = dataclasses.replace(adhesion, range=adhesion.work / stress_cap)
         needed = solved.peak_stress * compliance / (2.0 * solved.range * RAMP_GAIN)
-        ramp = float(min(max(MAUGIS_RAMP, needed), MAX_RAMP))
-    return GridLaw(adhesion, solved, ramp, float(compliance), float(stress_cap))
+        fallback = float(min(max(MAUGIS_RAMP, needed), MAX_RAMP))
+        if needed * RAMP_GAIN / MAUGIS_RAMP > UNSTABLE_GAIN or solved != adhesion:
+            ramp = fallback
+    return GridLaw(adhesion, solved, ramp, float(compliance), float(stress_cap), fallback)
 
 
 def grid_law(adhesion, operator) -> GridLaw:
