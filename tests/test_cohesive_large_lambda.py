@@ -14,6 +14,7 @@ lambda. The tolerance of each comparison is what that costs by Maugis' own close
 import math
 import warnings
 
+import numpy as np
 import pytest
 from scipy.optimize import brentq
 
@@ -87,3 +88,27 @@ def test_resolved_maugis_law_is_solved_as_asked():
     unresolved = grid_law(law(10.0), Operator())
     assert unresolved.regularised and unresolved.peak_stress < law(10.0).peak_stress
     assert math.isclose(unresolved.work, W) and MAUGIS_RAMP < unresolved.ramp <= 1.0
+
+
+def test_invariant_refuses_open_points_short_of_the_law():
+    """The cohesive invariant ('tension') is two-sided: a state whose open points within the range carry none of the
+    law's tension (the adhesive ring dropped, the rest kept) is refused; the solved state passes. Before, only tension
+    beyond the law counted, and such a state passed it."""
+    from types import SimpleNamespace
+
+    from contactlib.invariants import adhesive_checks
+
+    h = contactlib.surfaces.paraboloid(64, length=0.45, radius=1.0)
+    adhesion = contactlib.Adhesion(work=2.83e-4, range=2.83e-4 / 0.07, model="maugis")  # 6.5 elements of zone
+    ds = contactlib.solve(h, E=1.0, nu=0.0, penetration=0.002, adhesion=adhesion, periodic=False, tol=1e-6)
+    p, gap = ds.pressure.values, ds.gap.values
+    closed = gap <= 1e-9 * float(h.values.std())
+    state = SimpleNamespace(pressure=p, gap=gap, displacement=ds.displacement.values, penetration=float(ds.penetration),
+                            mean_pressure=float(ds.mean_pressure), in_contact=closed, law=None)
+    checks = {c.invariant: c for c in adhesive_checks(state, h.values, adhesion, tol=1e-6, penetration=0.002)}
+    assert checks["tension"].passed
+    ring = ~closed & (gap > 0.1 * adhesion.range) & (gap < 0.5 * adhesion.range)
+    assert ring.sum() > 20
+    state.pressure = np.where(ring, 0.0, p)
+    checks = {c.invariant: c for c in adhesive_checks(state, h.values, adhesion, tol=1e-6, penetration=0.002)}
+    assert not checks["tension"].passed
