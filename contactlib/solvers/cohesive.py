@@ -36,6 +36,13 @@ Two methods, tried in this order:
    share one bound on their GMRES iterations (:data:`NEWTON_WORK`), so that a failure comes back in about a minute,
    not many.
 
+A Maugis law whose process zone the grid does not resolve is solved as :mod:`.cohesive_law` regularises it (its ramp
+widened, its zone floored at :data:`.cohesive_law.ZONE_FLOOR` elements). There the frozen traction's contact edge
+creeps an element in 40-100 rounds: its last continuation stage hands over after :data:`STALL_ROUNDS`
+(:data:`FROZEN_FINAL_STALL_ROUNDS`) and Newton starts from its best state, not from the cold one (issue 38's sphere on
+256^2, lambda 3.5-10: 5-21 Newton steps, 3-5 s CPU against 0.5 s for the plain solve; the parent raised after
+40 s or returned a lattice-trapped state).
+
 A solve that does not meet ``tol`` comes back ``converged=False``. The residual is scale-free: the mean
 ``|phi| / c``, the interpenetration and the repulsive traction's weighted mean gap (``sum |p_r| |g| / sum |p_r|``,
 the weights floored at ``sigma_0 + |P|`` a point) over the rms height, the load error over ``sigma_0 + |P|``, and

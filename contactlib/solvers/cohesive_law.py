@@ -7,10 +7,21 @@ gain of a point on the ramp: where ``gain = sigma_0 K_ii / (2 e range) > 1`` the
 is unstable (its traction falls faster with the gap than its own compliance opens it), and every equilibrium with a
 point there is a saddle. That happens where the process zone spans fewer than about two elements (a Maugis sphere
 at lambda >= 5 on the 256^2 scene of issue 38): the frozen-traction rounds then cycle on the ramp points at a
-residual of 1e-6 (lambda 3.5, gain 0.51) and the semi-smooth Newton swings between them. :func:`grid_law` widens the
-ramp until the gain is :data:`RAMP_GAIN` (at most :data:`MAX_RAMP`, a ramp from ``sigma_0`` at contact to 0 at
-twice the range): the same work, the same peak stress, the step smeared over less than the element the grid
-cannot resolve it within anyway. A resolved zone keeps ``e = 0.25`` exactly.
+residual of 1e-6 (lambda 3.5, gain 0.51) and the semi-smooth Newton swings between them. Two regularisations,
+neither of which touches a zone the grid resolves:
+
+* the ramp is widened until the gain is :data:`RAMP_GAIN` (at most :data:`MAX_RAMP`, a ramp from ``sigma_0`` at
+  contact to 0 at twice the range): the same work and peak stress, the step smeared within the element the grid
+  cannot resolve it in anyway. Up front where the gain at ``e = 0.25`` exceeds :data:`UNSTABLE_GAIN`; between
+  :data:`RAMP_GAIN` and that, only when the law as asked fails (:meth:`GridLaw.widened`, in
+  :func:`.cohesive.solve_cohesive`);
+* below :data:`ZONE_FLOOR` elements across the zone, the peak stress is capped (the range lengthened, the work kept):
+  a narrower zone makes a whole ring of ramp points unstable at once, and the lattice traps the contact edge (the
+  parent returned a 128^2 sphere at lambda 10 converged with its contact radius 10 % short and its force 72 % off
+  Maugis', the law holding on every open point).
+
+:func:`contactlib.solve` says what was solved in ``attrs['adhesion_branch']``, and the invariants check the state
+against that law.
 """
 
 from __future__ import annotations
