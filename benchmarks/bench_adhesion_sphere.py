@@ -23,6 +23,13 @@ own error); and for all the lambdas a table by radius, with the radius error at 
 error at each radius.
 
     python -m benchmarks.bench_adhesion_sphere --lambdas 1.5 2 2.5 --n 256 --window 0.576
+
+``--hard`` instead times issue 38's hard cases: the Maugis sphere ``paraboloid(n, length=0.25, radius=1)``, ``E = 1,
+nu = 0.5``, work 1e-4, non-periodic, penetration 0.002, at each lambda of ``--lambdas``: the plain (non-adhesive)
+solve and the adhesive one (wall and CPU seconds, medians of ``--repeat``), and the force and contact radius
+against Maugis' closed form at the lambda asked.
+
+    python -m benchmarks.bench_adhesion_sphere --hard --n 256 --lambdas 3.5 5 7 10 --repeat 3
 """
 
 from __future__ import annotations
@@ -182,6 +189,45 @@ def run(lams, n: int, length: float, model: str, radii_over, tol: float, equival
               f"{radius_error:+.5f}")
 
 
+def hard(n: int, lams, repeat: int, penetration: float = 0.002) -> None:
+    """Issue 38's hard cases (module docstring, ``--hard``)."""
+    w, length, E, nu = 1e-4, 0.25, 1.0, 0.5
+    e_star = E / (1 - nu**2)
+    K = 4 * e_star / 3
+    h = contactlib.surfaces.paraboloid(n, length=length, radius=R)
+
+    def timed(**kwargs):
+        walls, cpus, ds = [], [], None
+        for _ in range(repeat):
+            wall, cpu = time.perf_counter(), time.process_time()
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore")
+                try:
+                    ds = contactlib.solve(h, E=E, nu=nu, penetration=penetration, periodic=False, **kwargs)
+                except contactlib.ConvergenceError as error:
+                    ds = error.dataset
+            walls.append(time.perf_counter() - wall)
+            cpus.append(time.process_time() - cpu)
+        return float(np.median(walls)), float(np.median(cpus)), ds
+
+    plain_wall, plain_cpu, _ = timed()
+    print(f"n {n}: plain solve {plain_wall:.2f} s wall, {plain_cpu:.2f} s CPU (median of {repeat})", flush=True)
+    for lam in lams:
+        sigma0 = lam / 2 * (math.pi * w * K**2 / R) ** (1 / 3)
+        law = contactlib.Adhesion(work=w, range=w / sigma0, model="maugis")
+        wall, cpu, ds = timed(adhesion=law)
+        target = penetration / (math.pi**2 * w**2 * R / K**2) ** (1 / 3)
+        A = brentq(lambda a: ref.maugis_load_penetration(a, lam)[1][0] - target, 0.3, 6.0, xtol=1e-13)
+        force = ref.maugis_load_penetration(A, lam)[0][0] * math.pi * w * R
+        radius = A * (math.pi * w * R**2 / K) ** (1 / 3)
+        got = float(ds.mean_pressure) * length**2
+        a = ref.apex_disc_radius(h.values, int(round(float(ds.contact_area) * h.size)), radius=R)
+        print(f"n {n} lambda {lam:g} (zone {ds.attrs['process_zone_elements']:.2f} el): {wall:.2f} s wall "
+              f"({wall / plain_wall:.1f}x), {cpu:.2f} s CPU ({cpu / plain_cpu:.1f}x), converged "
+              f"{ds.attrs['converged']}, {ds.attrs['solver']}; force {got / force - 1:+.4f}, radius "
+              f"{a / radius - 1:+.4f} vs Maugis", flush=True)
+
+
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--lambdas", type=float, nargs="+", default=[1.5, 2.0, 2.5])
@@ -193,7 +239,12 @@ def main(argv=None):
     parser.add_argument("--tol", type=float, default=1e-8)
     parser.add_argument("--radius", default="equivalent", choices=["equivalent", "contact"],
                         help="extrapolate at a fixed a + 2/3 (c - a) (default) or at a fixed contact radius a")
+    parser.add_argument("--hard", action="store_true", help="time issue 38's hard cases instead (docstring)")
+    parser.add_argument("--repeat", type=int, default=1, help="--hard: runs per timing (the median)")
     args = parser.parse_args(argv)
+    if args.hard:
+        hard(args.n, args.lambdas, args.repeat)
+        return
     run(args.lambdas, args.n, args.window, args.model, args.radii, args.tol, args.radius == "equivalent")
 
 

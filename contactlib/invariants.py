@@ -347,7 +347,8 @@ def check_closed_gap(gap_on_closed: float, *, tol: float, height_rms: float) -> 
 
 def check_tension(excess: float, *, tol: float, scale: float) -> Check:
     """Adhesion: tension only where the law allows it. ``excess`` is the tension beyond the law's, summed over the
-    points (a cohesive law: beyond its traction at the point's gap; JKR: any tension outside the closed set), and
+    points (a cohesive law: beyond its traction at the point's gap, and on the open points short of it; JKR: any
+    tension outside the closed set), and
     ``scale`` the tractions present; within :data:`RESIDUAL_MARGIN` ``tol`` (a cohesive law's ``tol`` is the
     solve's over ``LAW_WEIGHT``, as its residual's law term weighs it: :mod:`contactlib.solvers.adhesive.cohesive_newton`).
 
@@ -521,6 +522,8 @@ def adhesive_checks(state, heights: np.ndarray, adhesion, *, tol: float, mean_pr
     m = field_measures(state.pressure, state.gap, state.displacement, heights, state.penetration)
     p = state.pressure
     closed = state.in_contact
+    if getattr(state, "law", None) is not None:  # the cohesive law as solved on the grid (a regularised zone)
+        adhesion = state.law
     kinematic = state.displacement + (float(np.max(heights)) - heights) - state.penetration  # the gap, closed set too
     on_closed = float(np.max(np.abs(kinematic[closed]))) if np.any(closed) else 0.0
     mean_abs = float(np.mean(np.abs(p)))
@@ -530,9 +533,13 @@ def adhesive_checks(state, heights: np.ndarray, adhesion, *, tol: float, mean_pr
         # residual's law term sums |phi|: over the tractions present, floored at sigma_0 a point within the range
         slack = POINTWISE_GAP * tol * m.height_rms
         beyond = np.maximum(adhesion.traction(np.maximum(state.gap - slack, 0.0)) - p, 0.0)
+        # and on the open points, the tension short of the law's (a missing adhesive ring, compression off contact):
+        # the same law term bounds it (phi = p_r off the closed set)
+        open_points = state.gap > slack if closed is None else (state.gap > slack) & ~closed
+        short = np.maximum(p - adhesion.traction(state.gap + slack), 0.0)[open_points]
         present = max(float(np.sum(np.abs(p))), adhesion.peak_stress * max(int(np.count_nonzero(
             adhesion.interacting(state.gap))), 1))
-        tension = check_tension(float(np.sum(beyond)), tol=tol / LAW_WEIGHT, scale=present)
+        tension = check_tension(float(np.sum(beyond)) + float(np.sum(short)), tol=tol / LAW_WEIGHT, scale=present)
     else:
         scale = abs(mean_pressure if mean_pressure is not None else state.mean_pressure) + mean_abs
         outside = float(np.sum(np.maximum(-p[~closed], 0.0))) if closed is not None else 0.0  # JKR: tension off contact

@@ -20,6 +20,7 @@ from .. import resolution
 from ..core.inputs import number
 from ..core.labels import attrs_for
 from ..solvers.adhesive.cohesive import MAX_NEWTON, solve_cohesive
+from ..solvers.adhesive.cohesive_law import grid_law
 from ..solvers.adhesive.energy import EnergyFamily, check_symmetric, energy_family, growth_order
 from ..solvers.state import ContactState, height_scale
 
@@ -38,6 +39,7 @@ class AdhesiveState(ContactState):
     repulsive_pressure: np.ndarray | None = None
     in_contact: np.ndarray | None = None
     notes: tuple = ()
+    law: object = None  # the cohesive law as solved on the grid (:class:`.solvers.cohesive_law.GridLaw`)
 
 
 def check_scene(adhesion, values: np.ndarray, *, spacing, friction, method) -> None:
@@ -76,11 +78,14 @@ def run(setup, adhesion: Adhesion, *, warm_penetration=None) -> AdhesiveState:
         return setup.solve_symmetric(h, mean_pressure=mean_pressure, penetration=penetration, tol=tol,
                                      max_iter=max_iter, initial_pressure=initial_pressure)
 
-    state, p_r = solve_cohesive(setup.operator, setup.values, adhesion=adhesion,
+    report = {}  # the law solved: a zone narrower than the grid holds is regularised, and said so
+    state, p_r = solve_cohesive(setup.operator, setup.values, adhesion=grid_law(adhesion, setup.operator),
                                 mean_pressure=args["mean_pressure"], penetration=args["penetration"],
                                 tol=args["tol"], max_iter=MAX_NEWTON, initial_pressure=args["initial_pressure"],
-                                initial_penetration=warm_penetration, solve_repulsive=repulsive)
-    return AdhesiveState(**vars(state), repulsive_pressure=p_r, in_contact=p_r > 0)
+                                initial_penetration=warm_penetration, solve_repulsive=repulsive, report=report)
+    law = report["law"]
+    return AdhesiveState(**vars(state), repulsive_pressure=p_r, in_contact=p_r > 0,
+                         notes=(law.note(),) if law.regularised else (), law=law)
 
 
 def family(setup, max_radius: float | None = None) -> EnergyFamily:
