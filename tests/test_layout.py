@@ -98,3 +98,48 @@ def test_the_private_import_check_sees_one():
 def test_no_context_variable_holds_solver_state():
     assert set(context_variables()) <= CONTEXT_VARIABLES_ALLOWED
     assert ("resolution.py", "_RECORDER") in context_variables()  # the check sees the one there is
+
+
+LAYERS = [
+    ("core", "errors", "_version"),
+    ("kernels",),
+    ("model",),
+    ("solvers",),
+    ("surfaces", "analysis", "reference"),
+    ("accuracy", "resolution", "invariants"),
+    ("problems",),
+    ("two_scale", "distributed"),
+    ("pipeline", "studies", "cli", "testing", "__init__"),
+]
+"""The package's layers from the bottom up (the README's package map): a module imports only its own layer and
+those below it."""
+
+
+def _layer(parts: list[str]) -> int:
+    top = parts[1] if len(parts) > 1 else "__init__"
+    return next(k for k, names in enumerate(LAYERS) if top in names)
+
+
+def upward_imports():
+    """``(module, imported module)`` for every import of a module in a higher layer."""
+    found = []
+    for path in _modules():
+        parts = list(path.relative_to(PACKAGE.parent).with_suffix("").parts)
+        if parts[-1] == "__init__" and len(parts) > 2:
+            parts = parts[:-1]
+        own = _layer(parts)
+        for node in ast.walk(ast.parse(path.read_text(), filename=str(path))):
+            if isinstance(node, ast.ImportFrom):
+                target = _target(path, node)
+                if target is None:
+                    continue
+                imported = list(target.relative_to(PACKAGE.parent).parts)
+                names = [imported + [a.name] for a in node.names] if len(imported) == 1 else [imported]
+                for name in names:
+                    if len(name) > 1 and name[1] in {n for layer in LAYERS for n in layer} and _layer(name) > own:
+                        found.append((str(path.relative_to(PACKAGE)), ".".join(name)))
+    return found
+
+
+def test_no_module_imports_a_higher_layer():
+    assert upward_imports() == []
