@@ -107,8 +107,9 @@ LAYERS = [
     ("solvers",),
     ("surfaces", "analysis", "reference"),
     ("accuracy", "resolution", "invariants"),
+    ("distributed",),
     ("problems",),
-    ("two_scale", "distributed"),
+    ("two_scale",),
     ("pipeline", "studies", "cli", "testing", "__init__"),
 ]
 """The package's layers from the bottom up (the README's package map): a module imports only its own layer and

@@ -70,7 +70,7 @@ def _refuse_serial_only(args) -> None:
 def solve(args) -> int:
     """``contactlib solve`` by slabs: the same file as the serial command (less the serial-only checks' attrs)."""
     from ..model.bodies import body_model
-    from ..problems.contact import ConvergenceError
+    from ..errors import ConvergenceError
     from ..core.grid import Grid
     from ..model.materials import Elastic, contact_modulus
     from .normal_contact import solve as distributed_solve

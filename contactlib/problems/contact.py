@@ -44,6 +44,7 @@ def solve(
     sliding_velocity=None,
     adhesion=None,
     contact_area: float | None = None,
+    comm=None,
 ) -> xr.Dataset:
     """Normal contact of a rigid rough surface on an elastic or viscoelastic half-space or layer, with
     Coulomb friction and steady sliding: ``prepare(heights, **scene).solve(mean_pressure=..., penetration=...,
@@ -141,6 +142,11 @@ def solve(
         grid (the area rises in whole elements), with the ``mean_pressure`` that gives it, found by bracketing the
         load over solves of one scene (:mod:`contactlib.problems.area_target`); ``attrs['target_contact_area']``. Not with
         ``mean_pressure``, ``penetration`` or ``adhesion``.
+    comm : mpi4py.MPI.Comm, optional
+        Solve one scene over the ranks of ``comm`` (the ``mpi`` extra): each rank passes its own rows of the heights
+        (:func:`contactlib.distributed.slabs.slab_of`) or the generator's arguments, and gets its rows of the answer
+        (:mod:`contactlib.distributed.dataset`: a 2D elastic half-space or periodic layer, frictionless, at rest;
+        the other options are refused by name).
 
     Returns
     -------
@@ -183,6 +189,16 @@ def solve(
     >>> 0 < float(out.contact_area) < 1
     True
     """
+    if comm is not None:  # one scene over MPI ranks, each with its rows (imports mpi4py only here)
+        from ..distributed.dataset import solve as solve_distributed
+
+        return solve_distributed(heights, comm=comm, E=E, nu=nu, material=material, layer=layer, periodic=periodic,
+                                 length=length, tol=tol, max_iter=max_iter, mean_pressure=mean_pressure,
+                                 penetration=penetration, length_unit=length_unit, pressure_unit=pressure_unit,
+                                 friction=friction, sliding_direction=sliding_direction,
+                                 sliding_velocity=sliding_velocity, adhesion=adhesion, kernel=kernel, method=method,
+                                 initial_pressure=initial_pressure, target_error=target_error,
+                                 contact_area=contact_area)
     problem = prepare(heights, E=E, nu=nu, material=material, layer=layer, friction=friction,
                       sliding_direction=sliding_direction, sliding_velocity=sliding_velocity, adhesion=adhesion,
                       periodic=periodic, length=length, tol=tol, max_iter=max_iter, kernel=kernel, method=method,
