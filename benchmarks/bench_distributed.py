@@ -2,8 +2,8 @@
 
 Usage::
 
-    python benchmarks/bench_distributed.py --n 4096            # prepares the surface, runs serial, 1 rank, 2 ranks
-    python benchmarks/bench_distributed.py --n 8192 --max-iter 20 --skip-one-rank   # memory only
+    python -m benchmarks.bench_distributed --n 4096            # prepares the surface, runs serial, 1 rank, 2 ranks
+    python -m benchmarks.bench_distributed --n 8192 --max-iter 20 --skip-one-rank   # memory only
 
 Each run is its own process (``mpiexec -n P`` for the distributed ones) that reads the same prepared surface
 file (the serial one with xarray, the ranks their rows with netCDF4), solves a periodic self-affine scene under
