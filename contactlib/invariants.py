@@ -350,7 +350,8 @@ def check_tension(excess: float, *, tol: float, scale: float) -> Check:
     points (a cohesive law: beyond its traction at the point's gap, and on the open points short of it; JKR: any
     tension outside the closed set), and
     ``scale`` the tractions present; within :data:`RESIDUAL_MARGIN` ``tol`` (a cohesive law's ``tol`` is the
-    solve's over ``LAW_WEIGHT``, as its residual's law term weighs it: :mod:`contactlib.solvers.adhesive.cohesive_newton`).
+    solve's over ``LAW_WEIGHT``, as its residual's law term weighs it:
+    :mod:`contactlib.solvers.adhesive.cohesive_newton`).
 
     Parameters
     ----------

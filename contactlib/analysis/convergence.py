@@ -1,6 +1,7 @@
 """Speed against error: the analysis of a ``speed_vs_error`` study's dataset
-(:func:`contactlib.studies.speed_error_point`) that gave the rules of :mod:`contactlib.accuracy`: measured orders of convergence, the tolerance's share of the
-error, Pareto fronts of cost against error and the cheapest settings per target, as a markdown table."""
+(:func:`contactlib.studies.speed_error_point`) that gave the rules of :mod:`contactlib.accuracy`: measured orders of
+convergence, the tolerance's share of the error, Pareto fronts of cost against error and the cheapest settings per
+target, as a markdown table."""
 
 from __future__ import annotations
 

@@ -1,5 +1,5 @@
-"""The Polonsky-Keer constrained conjugate gradient on slabs: :func:`contactlib.solvers.symmetric.ccg.solve_polonsky_keer`
-with its sums reduced over the ranks.
+"""The Polonsky-Keer constrained conjugate gradient on slabs:
+:func:`contactlib.solvers.symmetric.ccg.solve_polonsky_keer` with its sums reduced over the ranks.
 
 The same algorithm, step for step: the same residual (:func:`contactlib.solvers.contact_residual`, from the
 same fused sums), the same preconditioner (the Fourier multiplier ``E*|q|/2`` restricted to the contact set),

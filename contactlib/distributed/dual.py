@@ -1,4 +1,5 @@
-"""Periodic displacement control on slabs, solved as its dual (the gap as unknown): :mod:`contactlib.solvers.symmetric.dual`.
+"""Periodic displacement control on slabs, solved as its dual (the gap as unknown):
+:mod:`contactlib.solvers.symmetric.dual`.
 
 The periodic compliance ignores the mean pressure, so the preconditioned primal iteration cannot run under
 displacement control; as in the serial library the load-controlled loop (:func:`.ccg.solve_polonsky_keer`)

@@ -1,5 +1,6 @@
 """An elastic layer on the slabs' spectral columns: the normal compliance that the serial
-:func:`contactlib.model.bodies.body_model` builds for a periodic, frictionless layer, and its reduction to the half-space.
+:func:`contactlib.model.bodies.body_model` builds for a periodic, frictionless layer, and its reduction to the
+half-space.
 
 The layer's compliance is a Fourier multiplier (:func:`contactlib.kernels.layer.layer_factors` times the half-space's
 ``2 / (E* |q|)``, the uniform mode :func:`contactlib.kernels.layer.zero_mode_compliance`), so each rank evaluates it on

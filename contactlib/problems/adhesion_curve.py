@@ -6,18 +6,18 @@ branch ends the state jumps, and the jump is recorded:
 
 * cohesive laws: the warm-started Newton solve lands on whatever equilibrium is nearest. A jump is a
   step where the closed (repulsive) area appears or vanishes, or full contact is reached or left. A step
-  whose solve fails is retried from the non-adhesive state and from the open one; if those fail too, the step is kept with ``converged = 0`` and NaN scalars and
-  the path goes on (it never raises). Under load control, beyond the pull-off there is no
-  equilibrium: those steps are NaN, ``converged = 0``, and ``attrs['detached']`` says from where.
+  whose solve fails is retried from the non-adhesive state and from the open one; if those fail too, the step is kept
+  with ``converged = 0`` and NaN scalars and the path goes on (it never raises). Under load control, beyond the
+  pull-off there is no equilibrium: those steps are NaN, ``converged = 0``, and ``attrs['detached']`` says from where.
 * ``"jkr"`` (the energy method): the state is the domain reached from the previous domain by moving its
   edge (:meth:`contactlib.solvers.adhesive.energy.EnergyFamily.descend`): it grows where the approach exceeds the
   tensile Griffith root of ``G = w`` and shrinks below the previous one's, so it leaves a domain exactly
   where its local minimum of ``F_m(d)`` disappears, and never descends into smaller, interpenetrating
   domains after a large step. Under load control the state carries the load asked exactly: the domain in
   whose cell the equilibrium curve ``G = w`` carries it, at the approach that makes its load the one asked
-  (:meth:`contactlib.solvers.adhesive.energy.EnergyFamily.load_state`); beyond the pull-off, NaN (``attrs['detached']``).
-  A state that would need a larger domain than the family holds (2D: the disc the window holds) is refused
-  with a ValueError naming the limit.
+  (:meth:`contactlib.solvers.adhesive.energy.EnergyFamily.load_state`); beyond the pull-off, NaN
+  (``attrs['detached']``). A state that would need a larger domain than the family holds (2D: the disc the window
+  holds) is refused with a ValueError naming the limit.
 
 Reported (Clarifications, "Adhesion"): ``pull_off_pressure``, the pull-off of load control (cohesive laws: the
 most tensile mean pressure along the path where the path went past it, else NaN with ``attrs['pull_off_status']``;
@@ -291,8 +291,9 @@ def _curve_scalars(ds: xr.Dataset, scalars: dict, length_unit: str, pressure_uni
     energy method's pull-off, the least load of its equilibrium curve ``G = w`` (the sawtooth of its states, whose
     domain grows by whole elements, reaches below it by a step-dependent amount), and the penetration at which
     the path leaves contact (:meth:`contactlib.solvers.adhesive.energy.EnergyFamily.detachment_penetration`; under load
-    control, the curve's at the pull-off, :meth:`~contactlib.solvers.adhesive.energy.EnergyFamily.pull_off_penetration`).
-    Not where a failed step withheld the scalars."""
+    control, the curve's at the pull-off,
+    :meth:`~contactlib.solvers.adhesive.energy.EnergyFamily.pull_off_penetration`). Not where a failed step withheld
+    the scalars."""
     if not scalars or ds.attrs.get("converged") != 1:
         return
     status = scalars.pop("pull_off_status", "")

@@ -1,11 +1,11 @@
 """What :func:`contactlib.solve` does with ``adhesion=``: validate, run and label an adhesive scene.
 
-Kept apart from :mod:`contactlib.problems.problem`, which calls :func:`check_scene`, :func:`check_load`, :func:`label` and
-(through :mod:`contactlib.problems.adhesive_choice`) :func:`run` or :func:`run_energy`, and nothing else. The cohesive laws go
-to :func:`contactlib.solvers.adhesive.cohesive.solve_cohesive` with the scene's compliance (half-space or layer, periodic or
-zero-padded); ``"jkr"`` to the energy method of :mod:`contactlib.solvers.adhesive.energy` on the compliance matrix of the
-profile or sphere (reduced to the orbits of its symmetries), which :func:`family` builds to the largest domain the
-window holds.
+Kept apart from :mod:`contactlib.problems.problem`, which calls :func:`check_scene`, :func:`check_load`, :func:`label`
+and (through :mod:`contactlib.problems.adhesive_choice`) :func:`run` or :func:`run_energy`, and nothing else. The
+cohesive laws go to :func:`contactlib.solvers.adhesive.cohesive.solve_cohesive` with the scene's compliance
+(half-space or layer, periodic or zero-padded); ``"jkr"`` to the energy method of
+:mod:`contactlib.solvers.adhesive.energy` on the compliance matrix of the profile or sphere (reduced to the orbits of
+its symmetries), which :func:`family` builds to the largest domain the window holds.
 """
 
 from __future__ import annotations
@@ -91,8 +91,9 @@ def run(setup, adhesion: Adhesion, *, warm_penetration=None) -> AdhesiveState:
 def family(setup, max_radius: float | None = None) -> EnergyFamily:
     """The energy method's family of contact domains of the scene, to the largest the window holds (2D: the disc
     of radius ``min(shape) // 2 - 1`` spacings about the apex; ``max_radius`` [length] bounds it) or to
-    :data:`contactlib.solvers.adhesive.energy.MAX_UNKNOWNS` (its :attr:`~contactlib.solvers.adhesive.energy.EnergyFamily.limit`)."""
-    order, ends = growth_order(setup.values, setup.grid.spacing, periodic=setup.operator.periodic,
+    :data:`contactlib.solvers.adhesive.energy.MAX_UNKNOWNS` (its
+    :attr:`~contactlib.solvers.adhesive.energy.EnergyFamily.limit`).""" order, ends = growth_order(setup.values,
+    setup.grid.spacing, periodic=setup.operator.periodic,
                                max_radius=max_radius)
     limit = None
     if setup.values.ndim == 2 or max_radius is not None:

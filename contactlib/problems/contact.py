@@ -140,8 +140,8 @@ def solve(
     contact_area : float, optional
         Solve to this contact area fraction in (0, 1) instead of a load: the state whose area is nearest it on the
         grid (the area rises in whole elements), with the ``mean_pressure`` that gives it, found by bracketing the
-        load over solves of one scene (:mod:`contactlib.problems.area_target`); ``attrs['target_contact_area']``. Not with
-        ``mean_pressure``, ``penetration`` or ``adhesion``.
+        load over solves of one scene (:mod:`contactlib.problems.area_target`); ``attrs['target_contact_area']``. Not
+        with ``mean_pressure``, ``penetration`` or ``adhesion``.
     comm : mpi4py.MPI.Comm, optional
         Solve one scene over the ranks of ``comm`` (the ``mpi`` extra): each rank passes its own rows of the heights
         (:func:`contactlib.distributed.slabs.slab_of`) or the generator's arguments, and gets its rows of the answer
