@@ -92,8 +92,8 @@ def family(setup, max_radius: float | None = None) -> EnergyFamily:
     """The energy method's family of contact domains of the scene, to the largest the window holds (2D: the disc
     of radius ``min(shape) // 2 - 1`` spacings about the apex; ``max_radius`` [length] bounds it) or to
     :data:`contactlib.solvers.adhesive.energy.MAX_UNKNOWNS` (its
-    :attr:`~contactlib.solvers.adhesive.energy.EnergyFamily.limit`).""" order, ends = growth_order(setup.values,
-    setup.grid.spacing, periodic=setup.operator.periodic,
+    :attr:`~contactlib.solvers.adhesive.energy.EnergyFamily.limit`)."""
+    order, ends = growth_order(setup.values, setup.grid.spacing, periodic=setup.operator.periodic,
                                max_radius=max_radius)
     limit = None
     if setup.values.ndim == 2 or max_radius is not None:

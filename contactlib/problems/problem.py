@@ -170,7 +170,7 @@ class Problem:
 
     def at_speed(self, sliding_velocity) -> Problem:
         """The same scene sliding at ``sliding_velocity`` (validated as :func:`contactlib.solve`'s): a new body
-        (the complex modulus at ``q . V`` is the speed's) built with this problem's caches, which the two then
+        (the complex modulus at ``q.V`` is the speed's) built with this problem's caches, which the two then
         share. A method rather than a field, because the body, its reductions and its attrs follow from the
         speed: a problem is never left half-updated."""
         s = self.scene
