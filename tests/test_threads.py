@@ -156,7 +156,7 @@ def test_solve_on_two_threads_agrees_with_one(small_grids_threaded):
 def test_concurrent_threaded_solves_share_the_workqueue(two_threads, small_grids_threaded):
     """Two Python threads solving on threaded FFTs and sweeps at once (a dask worker with two threads):
     numba's workqueue layer (chosen because OpenMP's spinning pools fought FFTW's) takes one launch
-    at a time, which the launch lock ensures; both answers equal a solve run alone."""
+    at a time, which the launch lock ensures; both answers equal a solve run alone, to round-off."""
     import os
     import threading
 
@@ -180,8 +180,12 @@ def test_concurrent_threaded_solves_share_the_workqueue(two_threads, small_grids
         worker.start()
     for worker in workers:
         worker.join()
+    # Equal to round-off, not bit for bit: twice on a loaded machine (CI, 2026-11-28; a six-job load) one thread's
+    # answer differed from the lone solve's by 1e-15 (1e-9 relative on near-zero pressures), 38 % of the points, the
+    # mark of another FFT algorithm (plans are per thread, FFTW_MEASURE times them), not of a sweep racing another:
+    # a race writes whole blocks wrong, orders of magnitude above this bound.
     for answer in answers[:2]:
-        np.testing.assert_array_equal(answer, answers[2])
+        np.testing.assert_allclose(answer, answers[2], rtol=0, atol=1e-12 * float(np.abs(answers[2]).max()))
 
 
 def test_fftw_openmp_team_follows_the_thread_setting():
