@@ -78,23 +78,9 @@ def self_affine(
     n = check_whole(n, "n", 2)
     if isinstance(dim, bool) or dim not in (1, 2):
         raise ValueError(f"dim must be 1 or 2, got {dim!r}")
-    hurst = number("hurst", hurst, lower=0.0, upper=1.0, lower_open=True)
-    q_low = number("q_low", q_low, lower=0.0, lower_open=True)
-    q_roll = number("q_roll", q_roll, lower=0.0, lower_open=True)
-    q_cutoff = number("q_cutoff", q_cutoff, lower=0.0, lower_open=True)
-    if not (q_low <= q_roll <= q_cutoff):
-        raise ValueError(f"need 0 < q_low <= q_roll <= q_cutoff, got {q_low}, {q_roll}, {q_cutoff}")
-    if q_cutoff > n / 2:
-        raise ValueError(f"q_cutoff={q_cutoff} exceeds the Nyquist wavenumber n/2={n / 2}")
-    if (rms_height is None) == (rms_slope is None):
-        raise ValueError("give exactly one of rms_height or rms_slope")
-    target = number("rms_height" if rms_height is not None else "rms_slope",
-                    rms_height if rms_height is not None else rms_slope, lower=0.0, lower_open=True)
-    anisotropy = number("anisotropy", anisotropy, lower=0.0, upper=1.0, lower_open=True)
-    if synthesis not in ("filtered-noise", "random-phase"):
-        raise ValueError(f"synthesis must be 'filtered-noise' or 'random-phase', got {synthesis!r}")
-    angle = number("angle (principal direction [rad])", angle)
-    length = number("length", length, lower=0.0, lower_open=True)
+    hurst, q_low, q_roll, q_cutoff, target, anisotropy, angle, length = check_spectrum(
+        n, hurst=hurst, q_low=q_low, q_roll=q_roll, q_cutoff=q_cutoff, rms_height=rms_height, rms_slope=rms_slope,
+        anisotropy=anisotropy, synthesis=synthesis, angle=angle, length=length)
     if dim == 1 and (anisotropy != 1 or angle != 0):
         raise ValueError("anisotropy and angle need dim=2")
 
@@ -137,3 +123,39 @@ def self_affine(
                  contactlib_version=__version__)
     return xr.DataArray(heights, dims=dims, coords=coords, name="height", attrs=attrs)
 
+
+def check_spectrum(n: int, *, hurst, q_low, q_roll, q_cutoff, rms_height, rms_slope, anisotropy, synthesis, angle,
+                   length) -> tuple:
+    """The self-affine spectrum's arguments of :func:`self_affine` (and of its slab-wise twin in
+    :mod:`contactlib.distributed.surfaces`), validated on ``n`` points a side.
+
+    Returns
+    -------
+    tuple
+        ``(hurst, q_low, q_roll, q_cutoff, target, anisotropy, angle, length)`` as floats, ``target`` the rms height or
+        slope asked.
+
+    Raises
+    ------
+    ValueError
+        Naming the parameter: band edges out of order or beyond Nyquist (``q_cutoff``), not exactly one of
+        ``rms_height`` and ``rms_slope``, an unknown ``synthesis``.
+    """
+    hurst = number("hurst", hurst, lower=0.0, upper=1.0, lower_open=True)
+    q_low = number("q_low", q_low, lower=0.0, lower_open=True)
+    q_roll = number("q_roll", q_roll, lower=0.0, lower_open=True)
+    q_cutoff = number("q_cutoff", q_cutoff, lower=0.0, lower_open=True)
+    if not (q_low <= q_roll <= q_cutoff):
+        raise ValueError(f"need 0 < q_low <= q_roll <= q_cutoff, got {q_low}, {q_roll}, {q_cutoff}")
+    if q_cutoff > n / 2:
+        raise ValueError(f"q_cutoff={q_cutoff} exceeds the Nyquist wavenumber n/2={n / 2}")
+    if (rms_height is None) == (rms_slope is None):
+        raise ValueError("give exactly one of rms_height or rms_slope")
+    target = number("rms_height" if rms_height is not None else "rms_slope",
+                    rms_height if rms_height is not None else rms_slope, lower=0.0, lower_open=True)
+    anisotropy = number("anisotropy", anisotropy, lower=0.0, upper=1.0, lower_open=True)
+    if synthesis not in ("filtered-noise", "random-phase"):
+        raise ValueError(f"synthesis must be 'filtered-noise' or 'random-phase', got {synthesis!r}")
+    angle = number("angle (principal direction [rad])", angle)
+    length = number("length", length, lower=0.0, lower_open=True)
+    return hurst, q_low, q_roll, q_cutoff, target, anisotropy, angle, length
