@@ -134,8 +134,9 @@ def test_work_continuation_never_returns_a_stage_short_of_the_work():
 def test_rough_state_of_the_quick_workflow_converges_on_its_law():
     """The quick workflow's ``adhesive_rough`` state that came back unconverged (rms slope 0.05, w 2e-4 over a
     3-element zone, seed 1, penetration -0.5 rms from the highest point): it converges, and every open point
-    carries the law's traction at its gap to 1e-6 of the peak stress (the parent's answer, at 0.97 w, missed it by
-    2.7 % on 3,078 points and was refused by the tension invariant)."""
+    carries the law's traction at its gap to 1e-5 of the peak stress (measured 9e-7; the parent's answer, at 0.97 w,
+    missed it by 2.7 % on 3,078 points and was refused by the tension invariant). Open: a gap above 1e-5 of the rms
+    height (contact points keep gaps of the solve's tolerance, 1e-7 of it)."""
     from contactlib.studies._common import rough_surface
     from contactlib.studies.adhesive_rough import cohesive_law
 
@@ -144,5 +145,5 @@ def test_rough_state_of_the_quick_workflow_converges_on_its_law():
     ds = contactlib.solve(h, E=1.0, nu=0.5, adhesion=law, penetration=-0.5 * float(h.std()), tol=1e-6)
     assert ds.attrs["converged"] == 1
     p, gap = ds.pressure.values, ds.gap.values
-    open_points = gap > 1e-9 * float(h.std())
-    assert np.max(np.abs(p - law.traction(gap))[open_points]) < 1e-6 * law.peak_stress
+    open_points = gap > 1e-5 * float(h.std())
+    assert open_points.sum() > 3000 and np.max(np.abs(p - law.traction(gap))[open_points]) < 1e-5 * law.peak_stress

@@ -37,11 +37,14 @@ Two methods, tried in this order:
    not many.
 
 A Maugis law whose process zone the grid does not resolve is solved as :mod:`.cohesive_law` regularises it (its ramp
-widened, its zone floored at :data:`.cohesive_law.ZONE_FLOOR` elements). There the frozen traction's contact edge
-creeps an element in 40-100 rounds: its last continuation stage hands over after :data:`STALL_ROUNDS`
-(:data:`FROZEN_FINAL_STALL_ROUNDS`) and Newton starts from its best state, not from the cold one (issue 38's sphere on
-256^2, lambda 3.5-10: 5-21 Newton steps, 3-5 s CPU against 0.5 s for the plain solve; the parent raised after
-40 s or returned a lattice-trapped state).
+widened, its zone floored at :data:`.cohesive_law.ZONE_FLOOR` elements). There, and wherever the zone spans fewer
+than :data:`NARROW_ZONE` elements, the frozen traction's contact edge creeps an element in 40-100 rounds, and Newton
+at the law itself stalls: after the first frozen-traction attempt the solve goes straight to Newton's continuation
+in the range, from that attempt's best state. Newton moves the contact edge where the rounds creep, but near the
+answer its steps can flip the edge's active set back and forth (no halving then helps); it stops there, and the
+frozen traction, whose rounds do not flip, finishes from its best state (issue 38's sphere, non-periodic, lambda
+3.5-10: 7.5-8.6x the plain solve on 256^2 against 18-29x before; 14x and 17x at lambda 5 and 10 on 512^2, where
+the parent took 24x and raised after 88 s; ``benchmarks/bench_maugis.py``).
 
 A solve that does not meet ``tol`` comes back ``converged=False``. The residual is scale-free: the mean
 ``|phi| / c``, the interpenetration and the repulsive traction's weighted mean gap (``sum |p_r| |g| / sum |p_r|``,
@@ -65,6 +68,7 @@ import numpy as np
 from . import sweeps
 from ..anderson import Anderson
 from ..symmetric.ccg import solve_polonsky_keer
+from ...model.adhesion import process_zone_length
 from .cohesive_law import grid_law
 from .cohesive_newton import GMRES_ITERATIONS, CohesiveNewton
 from .cohesive_rounds import Rounds
@@ -84,6 +88,13 @@ NEWTON_KRYLOV_FLOOR = 2 * GMRES_ITERATIONS
 """The least GMRES iterations that bound gives a solve, whatever its grid (two Newton steps' worth; the adhesion
 tests' 512^2 Newton solve takes 87). Issue 38's Maugis sphere at lambda 5 on 512^2 (3.4 elements across the zone)
 raised after 482 s with twice this floor on the loaded machine (three solves at once): most of it in Newton."""
+
+NARROW_ZONE = 4.0
+"""A Maugis process zone ``pi E* w / (4 sigma_0^2)`` narrower than this many spacings is solved from the first
+frozen-traction attempt straight through Newton's continuation in the range (:data:`RANGES`), without the
+frozen-traction continuation or Newton at the law itself first: on issue 38's sphere (non-periodic, 256^2 over a
+quarter of its radius, approach 0.002) at lambda 3.5-10 (3.5-1.7 spacings, the zone floored below 1.7) that took
+7.5-8.6x the plain solve against 18-29x (``benchmarks/bench_maugis.py``)."""
 
 RANGES = (8.0, 4.0, 2.0, 1.0)
 """Range multipliers of the first continuation a stalled solve restarts with (from its own start)."""
@@ -199,18 +210,22 @@ def solve_cohesive(
     (ContactState, ndarray)
         The state (``pressure`` the total traction; frozen traction: ``iterations`` the inner CG iterations,
         ``outer_iterations`` the rounds; Newton: ``iterations`` the Newton steps, ``outer_iterations`` the
-        GMRES iterations, both over every Newton solve, the continuations' failed stages included; ``solver``
-        names the method) and the repulsive part ``p_r`` [pressure].
+        GMRES iterations, both over every Newton solve, the continuations' failed stages included; Newton finished
+        by the frozen traction (``"cohesive-newton+frozen-traction"``): Newton's counts; ``solver`` names the
+        method) and the repulsive part ``p_r`` [pressure].
     """
     load_control = mean_pressure is not None
     adhesion = grid_law(adhesion, operator)  # Maugis' law as the grid resolves it (.cohesive_law)
     p = None if initial_pressure is None else np.array(initial_pressure, dtype=float)
     delta = initial_penetration if load_control else penetration
     result = None
+    # a narrow Maugis zone: from the first frozen-traction attempt straight to Newton's continuation in the range
+    narrow = adhesion.model == "maugis" and (process_zone_length(adhesion, operator.E_star)
+                                             < NARROW_ZONE * max(operator.grid.spacing))
     if solve_repulsive is not None:  # cold: its first round is the non-adhesive solve, to a loose tolerance
         result = _FrozenTraction(operator, heights, adhesion, mean_pressure, penetration, tol,
                                  solve_repulsive)(p, delta)
-        if result is not None and not result[-1] and np.isfinite(result[6]):
+        if result is not None and not result[-1] and np.isfinite(result[6]) and not narrow:
             result = _frozen_continuation(operator, heights, adhesion, mean_pressure, penetration, tol,
                                           solve_repulsive, p, delta, result)
     method = "cohesive-frozen-traction"
@@ -235,19 +250,30 @@ def solve_cohesive(
             p, delta = _cold_start(operator, heights, adhesion, mean_pressure, penetration, solve_repulsive)
         if delta is None:
             delta = 0.0
-        result = newton(adhesion, p, delta)
+        result = (None,) * 7 + (False,) if narrow else newton(adhesion, p, delta)
     if not result[-1]:  # stalled: continuation in the range (8, 4, 2, 1 times), warm-started stage to stage
         p_c, d_c = p, delta
         for factor in RANGES:
             result = newton(adhesion.replace(range=adhesion.range * factor), p_c, d_c)
             p_c, d_c = result[0], result[1]
-    if not result[-1]:  # still stalled: continuation in the work of adhesion from the cold start
+    if not result[-1] and solve_repulsive is not None and np.isfinite(result[6]):
+        # Newton stopped near the answer, where its steps flip the contact edge's active set: the frozen traction,
+        # whose rounds do not, finishes from its best state (issue 38's sphere at lambda 5 on 512^2: 11 rounds
+        # from 1.7e-5)
+        finish = _FrozenTraction(operator, heights, adhesion, mean_pressure, penetration, tol, solve_repulsive,
+                                 stall_rounds=FROZEN_STALL_ROUNDS)(result[0], result[1])
+        if finish is not None and finish[-1]:
+            result = (*finish[:4], result[4], result[5], *finish[6:])
+            method = "cohesive-newton+frozen-traction"
+    if not result[-1] and initial_pressure is None:
+        # still stalled: continuation in the work of adhesion from the cold start. Not from a warm start: a path
+        # (contactlib.adhesion_curve) tries the cold start itself next, and ran this continuation twice a failed step
         result = _continuation(newton, adhesion,
                                *_cold_start(operator, heights, adhesion, mean_pressure, penetration, solve_repulsive))
     p, delta, g, p_r, iterations, krylov, residual, converged = result
     if report is not None:
         report["law"] = adhesion
-    if method == "cohesive-newton":
+    if method.startswith("cohesive-newton"):  # the frozen traction's finishing rounds are not counted
         iterations, krylov = spent
     displacement = g - (heights.max() - heights) + delta
     state = ContactState(pressure=p, gap=g, displacement=displacement, penetration=float(delta),
@@ -441,4 +467,3 @@ class _FrozenTraction:
         if m.control:
             residual = max(residual, abs(float(p.mean()) - m.load) / m.pscale)
         return residual
-
