@@ -60,8 +60,8 @@ def read(path, *, length=None, unit: str | None = None, periodic: bool | None = 
     Returns
     -------
     xarray.DataArray
-        ``height`` [m] with dims ``("y", "x")`` or ``("x",)`` (a bare array's rows, a matrix file's and a
-        ``.npy``'s, are x), coordinates [m] (``i * length / n``, or
+        ``height`` [m] with dims ``("y", "x")`` or ``("x",)`` (a ``.npy`` array is indexed ``[ix, iy]``, a
+        text matrix has one row per y, a NetCDF ``height`` is read by its dims' names), coordinates [m] (``i * length / n``, or
         the file's own uniform positions), and attrs: ``source_file`` (name), ``source_sha256``,
         ``source_format``, ``source_reader``, ``height_unit`` (the file's), ``length`` [m] per axis,
         ``length_from`` (file or argument), ``periodic``, ``detrend`` (+ what it removed), ``fill``,
