@@ -1,10 +1,10 @@
 """``contactlib.solve(heights, ..., comm=MPI.COMM_WORLD)``: the distributed solve (:func:`.normal_contact.solve`)
 behind the serial entry point, its answer labelled as the serial one for this rank's rows.
 
-Each rank passes its own rows of the heights (:func:`contactlib.distributed.slabs.slab_of`,
-:func:`contactlib.distributed.io.read_slab`) or the generator's arguments, and gets a Dataset of those rows: the
-fields on ``(x, y)`` with ``x`` the rows' positions in the window (so the ranks' datasets concatenate along ``x``),
-the scalars of the whole grid, and ``attrs['row_start']`` / ``attrs['distributed_ranks']``. What is distributed: a 2D
+Each rank passes its own rows of x of the heights (:func:`contactlib.distributed.slabs.slab_of` of a bare array
+indexed ``[ix, iy]``, :func:`contactlib.distributed.io.read_slab`) or the generator's arguments, and gets a Dataset of
+those rows: the fields on ``("y", "x")`` as the serial ones, with ``x`` its rows' positions in the window (so the
+ranks' datasets concatenate along ``x``), the scalars of the whole grid, and ``attrs['row_start']`` / ``attrs['distributed_ranks']``. What is distributed: a 2D
 elastic half-space with the spectral kernel, or a periodic frictionless layer, periodic or not, under load or
 displacement control. The other options of :func:`contactlib.solve` are refused by name.
 """
