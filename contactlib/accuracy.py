@@ -329,7 +329,7 @@ def grid_points_per_wavelength(heights, *, length=None, floor: float = 1e-10) ->
     Parameters
     ----------
     heights : xarray.DataArray or ndarray
-        Periodic heights [length].
+        Periodic heights [length]: a DataArray's ``x`` and ``y`` read by name, a bare array indexed ``[ix, iy]``.
     length : float or tuple, optional
         Window size [length], required for a bare array.
     floor : float

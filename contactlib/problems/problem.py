@@ -325,7 +325,8 @@ def prepare(heights, *, E: float | None = None, nu: float | None = None, materia
     Parameters
     ----------
     heights : xarray.DataArray or ndarray
-        Rigid surface heights [length], as :func:`contactlib.solve`.
+        Rigid surface heights [length], as :func:`contactlib.solve`: a DataArray's ``x`` and ``y`` read by name, a
+        bare array indexed ``[ix, iy]`` (``surface.transpose("x", "y").values``) with ``length``.
     E, nu : float
         Young's modulus [pressure] and Poisson ratio (or ``material``).
     material : contactlib.Elastic or contactlib.Viscoelastic, optional

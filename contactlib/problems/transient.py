@@ -114,7 +114,8 @@ def solve_transient(
     Parameters
     ----------
     heights : xarray.DataArray or ndarray
-        Rigid surface heights [length] as :func:`contactlib.solve` takes them (an ndarray needs ``length``).
+        Rigid surface heights [length] as :func:`contactlib.solve` takes them (an ndarray is indexed ``[ix, iy]``
+        and needs ``length``). The saved fields are on ``("saved_time", "y", "x")``.
     times : sequence of float
         Strictly increasing instants [time]. The body is at rest before ``times[0]``; the load given there
         is applied instantaneously (the glassy response, ``E_inf``), or, with ``initial="relaxed"``, has
