@@ -154,3 +154,45 @@ def test_anisotropic_surface_read_by_name_and_sliding_along_x():
     along_y = analysis.interlocking_friction(a.pressure, a.displacement, lengths=(1.0, 1.0), direction=math.pi / 2)
     assert mu > 0 and along_x == pytest.approx(mu, rel=1e-9)
     assert abs(along_y) < 0.2 * mu, (along_y, mu)  # 0.07 mu here; the (y, x) values read as [ix, iy]: 0.07 mu
+
+
+# --- the MPI files: written on (y, x), read by name, older (x, y) files too ----------------------------------------
+
+class OneRank:
+    """The communicator calls of :mod:`contactlib.distributed.io` on one rank (no MPI needed for the file layout;
+    tests/test_distributed.py runs them on 1-3 ranks under mpirun)."""
+
+    def Get_size(self):
+        return 1
+
+    def Get_rank(self):
+        return 0
+
+    def allreduce(self, value, op=None):
+        return value
+
+    def bcast(self, value, root=0):
+        return value
+
+    def Barrier(self):
+        pass
+
+
+def test_slab_files_are_on_y_x_and_read_by_name(tmp_path):
+    from contactlib.distributed.io import read_slab, write_slabs
+
+    h = rough(24)
+    rows = h.transpose("x", "y").values  # a rank's slab: rows of x
+    header = xr.Dataset(coords={d: (d, h[d].values, dict(h[d].attrs)) for d in ("x", "y")})
+    write_slabs(OneRank(), tmp_path / "slabs.nc", shape=rows.shape, fields={"height": (rows, dict(h.attrs))},
+                header=header)
+    with xr.open_dataset(tmp_path / "slabs.nc") as written:
+        assert written.height.dims == ("y", "x")
+        np.testing.assert_array_equal(written.height.values, h.values)
+    h.to_dataset().to_netcdf(tmp_path / "new.nc")
+    h.transpose("x", "y").to_dataset().to_netcdf(tmp_path / "old.nc")  # as contactlib wrote them before
+    for name in ("slabs.nc", "new.nc", "old.nc"):
+        slab = read_slab(OneRank(), tmp_path / name)
+        assert slab.dims == ("y", "x"), name
+        np.testing.assert_array_equal(slab.values, h.values, err_msg=name)
+        xr.testing.assert_equal(contactlib.surfaces.read(tmp_path / name, detrend="none"), slab)
