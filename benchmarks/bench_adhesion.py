@@ -48,7 +48,8 @@ def main(argv=None):
             if args.peer_repeats == 0:
                 t_peer, peer = float("nan"), {"contact_area": float("nan"), "mean_gap": float("nan")}
             else:
-                t_peer, peer = timed(lambda: solve_tamaas(h.values, E=1.0, nu=0.0, work=work, range_=range_,
+                bare = h.transpose("x", "y").values  # [ix, iy], as tamaas indexes it
+                t_peer, peer = timed(lambda: solve_tamaas(bare, E=1.0, nu=0.0, work=work, range_=range_,
                                                           model=model, mean_pressure=load, tol=1e-10),
                                      args.repeats if args.peer_repeats is None else args.peer_repeats,
                                      warm=n < args.peer_warm_up_below)

@@ -61,7 +61,7 @@ def path(h, lam: float, model: str, approaches, warm, length: float, tol: float)
     size = h.size
     ds, disc, pixel, loads, states, zone = None, [], [], [], [], []
     for k, d in enumerate(approaches):
-        first = warm[k] if warm is not None else (None if ds is None else ds.pressure.values)
+        first = warm[k] if warm is not None else (None if ds is None else ds.pressure.transpose("x", ...).values)
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
             try:
@@ -82,7 +82,7 @@ def path(h, lam: float, model: str, approaches, warm, length: float, tol: float)
         zone.append(c)
         pixel.append(math.sqrt(float(ds.contact_area) * length**2 / math.pi))
         loads.append(load)
-        states.append(ds.pressure.values)
+        states.append(ds.pressure.transpose("x", ...).values)  # [ix, iy]: a bare warm start
         print(f"  {model} lambda {lam:g} d {d:+.5f}: a/a_c {a / a_c:.4f} (sqrt(area/pi) {pixel[-1] / a_c:.4f}) "
               f"c/a_c {c / a_c:.4f} P/|P_c| {load / scale:+.4f} err JKR {(load - jkr) / scale:+.4f} "
               f"err MD {(load - md) / scale:+.5f} "

@@ -82,7 +82,7 @@ def run_distributed(surface: str, mean_pressure: float, tol: float, max_iter: in
     comm = MPI.COMM_WORLD
     heights = read_slab(comm, surface)
     lengths = tuple(heights.attrs["length"])
-    heights = heights.values  # the solve reuses this buffer (overwrite_heights), as the command line does
+    heights = heights.transpose("x", "y").values  # rows of x; the solve reuses this buffer (overwrite_heights)
     nx = comm.allreduce(heights.shape[0])
     shape = (nx, heights.shape[1])
     before = _rss_mib()

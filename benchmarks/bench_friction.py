@@ -283,7 +283,7 @@ def bench_cm(bench: Bench) -> list[dict]:
     th = thickness_for(q0h)
     for n in args.cm_sizes:
         heights = bench.surface(2, n)
-        h = np.ascontiguousarray(heights.values)
+        h = np.ascontiguousarray(heights.transpose("x", "y").values)  # [ix, iy], as the peer indexes it
         for target in args.contact:
             p, _ = bench.load(2, n, nu, None, target)  # the half-space's load, as in measurement 2
             ours, = bench.measure(2, n, [dict(p=p, nu=nu, q0h=q0h, mu=0.0)], reuse=True)

@@ -61,7 +61,7 @@ def theirs(n, steps, dt, tol):
     import tamaas as tm
     tm.set_log_level(tm.LogLevel.error)
     h, pm = scene(n)
-    heights = np.ascontiguousarray(h.values)
+    heights = np.ascontiguousarray(h.transpose("x", "y").values)  # [ix, iy], as tamaas indexes it
     model = tm.ModelFactory.createModel(tm.model_type.basic_2d, [1.0, 1.0], [n, n])
     model.E, model.nu = 1.0, NU
     solver = tm.MaxwellViscoelastic(model, heights, tol, dt, list(SHEAR), list(TAUS))
@@ -109,7 +109,7 @@ def full_contact(dt=0.05, end=20.0, n=32):
             times = np.arange(int(round(end / dt)) + 1) * dt
             out = contactlib.solve_transient(heights, material=contactlib.Viscoelastic(E0=1.0, prony=[(E1, 1.0)], nu=nu),
                                              times=times, mean_pressure=pm, length=1.0, tol=1e-12)
-            ours = out.pressure.isel(saved_time=-1).values
+            ours = out.pressure.isel(saved_time=-1).transpose("x", "y").values  # [ix, iy], as theirs
             for code, p in (("tamaas", theirs), ("contactlib", ours)):
                 amplitude = np.abs(np.fft.rfft(p[:, 0])[1]) * 2 / n
                 rows.append((nu, shear, code, amplitude / (q * h0 / 2) * (1 - nu**2)))

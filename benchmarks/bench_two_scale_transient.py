@@ -69,7 +69,7 @@ def main(argv=None) -> None:
     stop = {"tol": args.two_scale_tol} if args.two_scale_force_tol is None else {"force_tol": args.two_scale_force_tol}
 
     reference = contactlib.solve_transient(field, tol=args.ref_tol, save_fields=True, **common)
-    ref_forces = np.array([two_scale.asperity_forces(p, table) for p in reference.pressure.values])
+    ref_forces = np.array([two_scale.asperity_forces(p, table) for p in reference.pressure])
     for fn, kw in ((contactlib.solve_transient, {"tol": args.full_tol}),
                    (two_scale.solve_transient, stop),
                    (two_scale.solve_transient, {"scale": "macro"})):  # warm-up: one step of each
@@ -81,7 +81,7 @@ def main(argv=None) -> None:
     def error(forces):
         return float(np.max(np.abs(forces - ref_forces).max(axis=1) / ref_forces.max(axis=1)))
 
-    full_forces = np.array([two_scale.asperity_forces(p, table) for p in full.pressure.values])
+    full_forces = np.array([two_scale.asperity_forces(p, table) for p in full.pressure])
     row = {"count": args.count, "coverage": args.coverage, "n": int(field.shape[0]), "steps": args.steps + 1,
            "in_contact_first": int(np.count_nonzero(ref_forces[0] > 0)),
            "in_contact_last": int(np.count_nonzero(ref_forces[-1] > 0)),

@@ -46,7 +46,7 @@ def elastic_floor(h, p: float, zetas, answers: list, tol: float, elastic_s: floa
     """The elastic solver (E0) from starts as far off as the path walk's (see the module docstring, 3.), its
     iterations and time per speed (median of ``repeats``); printed as a table, returned for ``--json``."""
     cold = contactlib.solve(h, E=1.0, nu=0.5, mean_pressure=p, tol=tol)
-    elastic = cold.pressure.values
+    elastic = cold.pressure.transpose("x", ...).values  # [ix, iy]: the starts below are bare warm starts
     scale = np.linalg.norm(elastic)
     rows, total_s, total_its = [], elastic_s, int(cold.iterations)  # the first speed: one cold solve
     print("\n| zeta | path start error (relative L2) | elastic start error (after clipping) | elastic iterations "
@@ -149,7 +149,7 @@ def main(argv=None) -> int:
         for velocity in velocities if walk not in ("path", "recycle") else ():
             out = contactlib.solve(h, material=material, mean_pressure=p, sliding_velocity=velocity,
                                    tol=args.tol, initial_pressure=warm)
-            warm = out.pressure.values if walk == "warm" else None
+            warm = out.pressure if walk == "warm" else None
             outs.append(out)
         paths[walk] = outs
         walks[walk] = (time.perf_counter() - t0, sum(int(out.iterations) for out in outs),
@@ -169,8 +169,8 @@ def main(argv=None) -> int:
               f"{updates} set updates; CPU time {cpu[walk]:.2f} s = {cpu[walk] / c_el:.1f}x ({c_el:.3f} s) "
               f"(load {os.getloadavg()[0]:.1f})")
     if args.floor:
-        sweep["floor"] = elastic_floor(h, p, zetas, [out.pressure.values for out in paths["path"]], args.tol, t_el,
-                                       args.repeats)
+        answers = [out.pressure.transpose("x", ...).values for out in paths["path"]]  # [ix, iy]: bare warm starts
+        sweep["floor"] = elastic_floor(h, p, zetas, answers, args.tol, t_el, args.repeats)
     if args.json:
         args.json.write_text(json.dumps({"host": info, "steady": rows, "sweep": sweep}, indent=1))
     return 0

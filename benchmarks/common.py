@@ -128,7 +128,7 @@ def self_affine_surface(n: int, args, *, dim: int = 2):
 
 def self_affine_array(n: int, args) -> np.ndarray:
     """:func:`self_affine_surface`'s 2D heights as a contiguous array (for the peers)."""
-    return np.ascontiguousarray(self_affine_surface(n, args).values)
+    return np.ascontiguousarray(self_affine_surface(n, args).transpose("x", "y").values)  # [ix, iy], as the peers'
 
 
 def contact_fraction(pressure: np.ndarray) -> float:

@@ -79,12 +79,13 @@ class Contactlib(Peer):
         t0 = time.perf_counter()
         out, converged = self._solve(heights, mean_pressure, tol, max_iter)
         dt = time.perf_counter() - t0
-        return Solution(out["pressure"].values, int(out["iterations"]), dt, converged)
+        pressure = out["pressure"].transpose("x", ...).values  # indexed [ix, iy], as the bare heights
+        return Solution(pressure, int(out["iterations"]), dt, converged)
 
     def reference(self, heights, mean_pressure, tol, *, max_iter=3000) -> tuple[Solution, float]:
         """The tightest solution reachable, and its residual (round-off can stall it above ``tol``)."""
         out, _ = self._solve(heights, mean_pressure, tol, max_iter)
-        return Solution(out["pressure"].values, int(out["iterations"]), 0.0), float(out["residual"])
+        return Solution(out["pressure"].transpose("x", ...).values, int(out["iterations"]), 0.0), float(out["residual"])
 
 
 @contextlib.contextmanager

@@ -34,6 +34,7 @@ import xarray as xr
 
 from .core import fft
 from .core.grid import Grid
+from .core.inputs import in_solver_axes
 from .solvers.state import height_scale
 
 REFERENCE_FACTOR = 4
@@ -328,7 +329,7 @@ def grid_points_per_wavelength(heights, *, length=None, floor: float = 1e-10) ->
     Parameters
     ----------
     heights : xarray.DataArray or ndarray
-        Periodic heights [length].
+        Periodic heights [length]: a DataArray's ``x`` and ``y`` read by name, a bare array indexed ``[ix, iy]``.
     length : float or tuple, optional
         Window size [length], required for a bare array.
     floor : float
@@ -347,6 +348,7 @@ def grid_points_per_wavelength(heights, *, length=None, floor: float = 1e-10) ->
     >>> contactlib.accuracy.grid_points_per_wavelength(h)
     8.0
     """
+    heights = in_solver_axes(heights)  # a DataArray's x and y by name
     values = np.asarray(getattr(heights, "values", heights), dtype=float)
     if length is None and isinstance(heights, xr.DataArray):
         length = [float(heights[d][1] - heights[d][0]) * heights.sizes[d] for d in heights.dims]

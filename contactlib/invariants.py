@@ -29,6 +29,7 @@ import numpy as np
 
 from .core._numba import vector_jit
 from .errors import ConvergenceError
+from .core.inputs import in_solver_axes
 from .solvers.adhesive.cohesive_newton import LAW_WEIGHT
 
 RESIDUAL_MARGIN = 2.0
@@ -707,8 +708,8 @@ def verify_two_scale(ds, heights, *, scale: str, tol: float, macro_tol: float, m
     checks.append(Check("sign", max(-float(np.min(forces, initial=0.0)), 0.0) / largest, _floor(load_tol),
                         "max(-asperity force) / largest force"))
     if scale != "macro" and "pressure" in ds and heights is not None:
-        m = field_measures(ds["pressure"].values, ds["gap"].values, ds["displacement"].values, heights,
-                           float(ds["penetration"]))
+        m = field_measures(*(in_solver_axes(ds[k]).values for k in ("pressure", "gap", "displacement")), heights,
+                           float(ds["penetration"]))  # by name: [ix, iy] as the heights
         if penetration is not None:
             checks.append(check_penetration(float(ds["penetration"]), penetration, tol=tol, height_rms=m.height_rms))
         checks += [check_sign(m, tol=tol), check_gap(m.min_gap, tol=tol, height_rms=m.height_rms),

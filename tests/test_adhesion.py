@@ -66,7 +66,7 @@ def test_cohesive_small_range_matches_johnson(model):
     ds = None
     for d in (0.4, 0.0):  # a warm-started path, as adhesion_curve runs it
         ds = contactlib.solve(h, E=1.0, nu=0.0, penetration=d * AMPLITUDE, adhesion=law,
-                              initial_pressure=None if ds is None else ds.pressure.values)
+                              initial_pressure=None if ds is None else ds.pressure)
         half_width = float(ds.contact_area) / 2
         expected = ref.johnson_wavy_pressure(half_width, amplitude=AMPLITUDE, wavelength=1.0, E_star=1.0, work=WORK)
         assert abs(float(ds.mean_pressure) - expected) / P_STAR < 0.01
@@ -109,7 +109,7 @@ def _maugis_sphere_path(h, L, R, w, lam, steps, warm):
     law = Adhesion(work=w, range=w / sigma0, model="maugis")
     radii, zones, loads, pressures, ds = [], [], [], [], None
     for k, d in enumerate(steps):
-        start = warm[k] if warm is not None else (None if ds is None else ds.pressure.values)
+        start = warm[k] if warm is not None else (None if ds is None else ds.pressure)
         ds = contactlib.solve(h, E=1.0, nu=0.0, penetration=d, adhesion=law, periodic=False, initial_pressure=start,
                               tol=1e-8)
         assert ds.attrs["converged"] == 1 and ds.attrs["process_zone_elements"] > 3
@@ -241,7 +241,7 @@ def test_maugis_dugdale_sphere_lambda_one():
     ds = None
     for d in (0.004, 0.0, -0.004):
         ds = contactlib.solve(h, E=1.0, nu=0.0, penetration=d, adhesion=law, periodic=False,
-                              initial_pressure=None if ds is None else ds.pressure.values)
+                              initial_pressure=None if ds is None else ds.pressure)
         load = float(ds.mean_pressure) * L * L / (np.pi * w * R)
         D = d * (K**2 / (np.pi**2 * w**2 * R)) ** (1 / 3)
         expected = np.interp(D, D_ref, P_ref)
@@ -503,7 +503,7 @@ def test_loose_tolerance_refuses_a_state_without_its_contact():
     for tol in (1e-3, 1e-8):
         warm = contactlib.solve(h, E=1.0, nu=0.0, mean_pressure=-2e-4, adhesion=law, tol=tol)
         answers[tol] = contactlib.solve(h, E=1.0, nu=0.0, mean_pressure=2.571e-4, adhesion=law, tol=tol,
-                                        initial_pressure=warm.pressure.values)
+                                        initial_pressure=warm.pressure)
     loose, tight = answers[1e-3], answers[1e-8]
     assert loose.attrs["converged"] == 1 and float(loose.residual) <= 1e-3
     assert float(tight.contact_area) == pytest.approx(0.1335, abs=2e-3)

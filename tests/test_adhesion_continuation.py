@@ -52,14 +52,15 @@ def check_against_newton(ds, h, law, *, periodic=True, start=None, **load):
     from ``start`` (default: the non-adhesive state of the scene) lands on the same traction."""
     values, grid, _, _ = grid_of(h)
     op = Compliance(grid, E_star=1.0, periodic=periodic)
-    p, delta = ds.pressure.values, float(ds.penetration)
+    p, delta = ds.pressure.transpose("x", "y").values, float(ds.penetration)  # [ix, iy], as values
     gap = op(p) + values.max() - values - delta
     scale = float(values.std())
-    assert np.max(np.abs(gap - ds.gap.values)) < 1e-9 * scale
+    assert np.max(np.abs(gap - ds.gap.transpose("x", "y").values)) < 1e-9 * scale
     newton = cohesive_newton.CohesiveNewton(op, values, law, load.get("mean_pressure"), load.get("penetration"), 1e-10, 60)
     assert newton.residual_of(p, gap, largest=False)[-1] < 2e-10
     start = contactlib.solve(h, E=1.0, nu=0.0, periodic=periodic, **load) if start is None else start
-    state, _ = solve_cohesive(op, values, adhesion=law, tol=1e-10, initial_pressure=start.pressure.values,
+    state, _ = solve_cohesive(op, values, adhesion=law, tol=1e-10,
+                              initial_pressure=start.pressure.transpose("x", "y").values,
                               initial_penetration=float(start.penetration), **load)
     assert state.converged and state.solver.startswith("cohesive-newton")
     assert np.max(np.abs(state.pressure - p)) < 1e-5 * np.max(np.abs(p))
@@ -87,7 +88,7 @@ def test_rounds_inside_one_solve_under_displacement_zero_padded(monkeypatch, mod
     """Zero-padded displacement control runs Polonsky-Keer too (a definite compliance): its heights move on
     the block of a padded grid. The rough surface sits on a sphere (radius 2) so that its edges drop out of the
     cohesive zone: a window whose edge is inside it is refused (the adhesion beyond it would be cut off)."""
-    h = rough() + contactlib.surfaces.paraboloid(64, length=1.0, radius=2.0).values
+    h = rough() + contactlib.surfaces.paraboloid(64, length=1.0, radius=2.0)  # added by name
     law = contactlib.Adhesion(work=WORK, range=RANGE, model=model)
     penetration = 0.3 * float(rough().std())
     inside, restarted = solve_both(monkeypatch, h, penetration=penetration, periodic=False, adhesion=law)
@@ -104,7 +105,7 @@ def test_tensile_load_from_a_warm_start():
     law = contactlib.Adhesion(work=WORK, range=RANGE, model="maugis")
     warm = contactlib.solve(h, E=1.0, nu=0.0, mean_pressure=1e-4, tol=1e-10, adhesion=law)
     ds = contactlib.solve(h, E=1.0, nu=0.0, mean_pressure=-3e-4, tol=1e-10, adhesion=law,
-                          initial_pressure=warm.pressure.values)
+                          initial_pressure=warm.pressure)  # a DataArray: read by name
     assert ds.attrs["solver"].startswith("cohesive-frozen-traction") and ds.attrs["converged"] == 1
     assert float(ds.mean_pressure) == pytest.approx(-3e-4, rel=1e-9)
     assert float(ds.contact_area) < float(warm.contact_area)

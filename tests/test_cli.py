@@ -77,7 +77,7 @@ def test_solve_with_layer_and_friction_matches_api(tmp_path):
 def test_surface_from_a_measured_file_and_solve_reads_it_directly(tmp_path):
     h = contactlib.surfaces.self_affine(64, length=1e-3, hurst=0.7, q_roll=2, q_cutoff=16, rms_slope=0.1, seed=5)
     matrix, surf, direct, via = (tmp_path / n for n in ("m.txt", "s.nc", "direct.nc", "via.nc"))
-    np.savetxt(matrix, h.values.T * 1e6, fmt="%.17g")  # micrometres, one row per y
+    np.savetxt(matrix, h.transpose("y", "x").values * 1e6, fmt="%.17g")  # micrometres, one row per y
     file_args = ["--length", "1000", "--unit", "um", "--periodic", "--detrend", "mean"]
     assert main(["surface", "--from", str(matrix), *file_args, "-o", str(surf)]) == 0
     api = contactlib.surfaces.read(matrix, length=1000, unit="um", periodic=True, detrend="mean")

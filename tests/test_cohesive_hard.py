@@ -85,7 +85,7 @@ def test_load_control_warm_started_returns_the_load_or_raises():
     for fraction in (-0.9, -0.5):
         asked = fraction * PULL_OFF
         try:
-            ds = solve(law, asked, initial_pressure=warm.pressure.values)
+            ds = solve(law, asked, initial_pressure=warm.pressure)
         except contactlib.ConvergenceError as err:
             assert err.residual > TOL and err.dataset.attrs["converged"] == 0
             continue
@@ -93,7 +93,7 @@ def test_load_control_warm_started_returns_the_load_or_raises():
         assert ds.attrs["converged"] == 1 and load_error(ds, law, asked) <= 1.0
     assert answered >= 1
     with pytest.raises(contactlib.ConvergenceError):
-        solve(law, -1.2 * PULL_OFF, initial_pressure=warm.pressure.values)
+        solve(law, -1.2 * PULL_OFF, initial_pressure=warm.pressure)
 
 
 # Maugis spheres at large lambda, 3-4 elements across the process zone, under penetration control (issue 38, hard

@@ -37,8 +37,8 @@ def _scene(shape, periodic):
     """Heights [m] and window [m]: a periodic rough surface, or a rough bump well inside its window."""
     import contactlib
 
-    rough = contactlib.surfaces.self_affine(80, hurst=0.8, q_roll=2, q_cutoff=16, rms_slope=0.1, seed=1).values
-    rough = rough[: shape[0], : shape[1]]
+    rough = contactlib.surfaces.self_affine(80, hurst=0.8, q_roll=2, q_cutoff=16, rms_slope=0.1, seed=1)
+    rough = rough.transpose("x", "y").values[: shape[0], : shape[1]]  # rows of x, as slab_of splits them
     lengths = (shape[0] / 64, shape[1] / 64)
     if periodic:
         return rough, lengths
@@ -80,11 +80,12 @@ def _worker(out_path: str) -> None:
                 if comm.rank == 0:
                     ref = contactlib.solve(heights, E=1.0, nu=0.3, length=lengths, periodic=periodic, tol=1e-10,
                                            **load)
-                    p_ref = ref.pressure.values
+                    p_ref = ref.pressure.transpose("x", "y").values  # rows of x, as the slabs gathered
+                    g_ref = ref.gap.transpose("x", "y").values
                     results["solve"].append({
                         "case": f"{shape} periodic={periodic} {kind}",
                         "pressure_error": float(np.abs(pressure - p_ref).max() / p_ref.max()),
-                        "gap_error": float(np.abs(gap - ref.gap.values).max() / np.abs(ref.gap.values).max()),
+                        "gap_error": float(np.abs(gap - g_ref).max() / np.abs(g_ref).max()),
                         "same_contact_set": bool(np.array_equal(pressure > 0, p_ref > 0)),
                         "area": state.contact_area, "area_serial": float(ref.contact_area),
                         "mean_pressure": state.mean_pressure, "mean_pressure_serial": float(ref.mean_pressure),
@@ -104,7 +105,7 @@ def _worker(out_path: str) -> None:
             pressure = gather_field(state.pressure, comm)
             if comm.rank == 0:
                 ref = contactlib.solve(heights, E=1.0, nu=0.3, length=lengths, tol=1e-10, layer=layer, **load)
-                p_ref = ref.pressure.values
+                p_ref = ref.pressure.transpose("x", "y").values
                 results["layers"].append({
                     "case": f"{layer} {kind} ({ref.attrs['model']})",
                     "pressure_error": float(np.abs(pressure - p_ref).max() / p_ref.max()),
@@ -117,25 +118,25 @@ def _worker(out_path: str) -> None:
     pressure = gather_field(state.pressure, comm)
     if comm.rank == 0:
         ref = contactlib.solve(contactlib.surfaces.self_affine(**spec), E=1.0, nu=0.3, mean_pressure=0.05, tol=1e-10)
-        p_ref = ref.pressure.values
+        p_ref = ref.pressure.transpose("x", "y").values
         results["spec"] = {"pressure_error": float(np.abs(pressure - p_ref).max() / p_ref.max()),
                            "same_contact_set": bool(np.array_equal(pressure > 0, p_ref > 0))}
     # contactlib.solve(rows, ..., comm=): each rank its rows, labelled as the serial answer
     heights, lengths = _scene((65, 64), False)
     ds = contactlib.solve(slab_of(heights, comm), comm=comm, E=1.0, nu=0.3, length=lengths, periodic=False,
                           mean_pressure=0.01, tol=1e-10)
-    pressure = gather_field(ds.pressure.values, comm)
+    pressure = gather_field(ds.pressure.transpose("x", "y").values, comm)  # rows of x
     x = np.concatenate(comm.allgather(ds.x.values))
     if comm.rank == 0:
         ref = contactlib.solve(heights, E=1.0, nu=0.3, length=lengths, periodic=False, mean_pressure=0.01, tol=1e-10)
-        p_ref = ref.pressure.values
+        p_ref = ref.pressure.transpose("x", "y").values
         names = ("contact_area", "mean_pressure", "penetration", "mean_gap", "normal_force", "contact_radius")
         results["facade"] = {
             "pressure_error": float(np.abs(pressure - p_ref).max() / p_ref.max()),
             "same_contact_set": bool(np.array_equal(pressure > 0, p_ref > 0)),
             "scalars": {name: [float(ds[name]), float(ref[name])] for name in names},
             "invariants": [ds.attrs.get("invariants_checked"), ref.attrs.get("invariants_checked")],
-            "rows": len(x), "x_steps": float(np.ptp(np.diff(x))),
+            "rows": len(x), "x_steps": float(np.ptp(np.diff(x))), "dims": list(ds.pressure.dims),
             "labels_match": all(ds[v].attrs == ref[v].attrs for v in ("pressure", "gap", "displacement", *names))}
     for shape in [(63, 47), (65, 64)]:
         field = np.random.default_rng(2).standard_normal(shape)
@@ -153,12 +154,14 @@ def _worker(out_path: str) -> None:
                  dict(n=63, hurst=0.7, q_roll=1, q_cutoff=31, rms_slope=0.2, seed=3, anisotropy=0.5, angle=0.3,
                       synthesis="random-phase")]:
         local = self_affine_slab(comm, **spec)
-        whole = gather_field(local.values, comm)
+        whole = gather_field(local.transpose("x", "y").values, comm)
         if comm.rank == 0:
             ref = contactlib.surfaces.self_affine(**spec)
-            results["surface"].append({"case": str(spec), "identical": bool(np.array_equal(whole, ref.values)),
-                                       "max_difference": float(np.abs(whole - ref.values).max()),
-                                       "same_attrs": local.attrs == ref.attrs})
+            rows = ref.transpose("x", "y").values
+            results["surface"].append({"case": str(spec), "identical": bool(np.array_equal(whole, rows)),
+                                       "max_difference": float(np.abs(whole - rows).max()),
+                                       "same_attrs": local.attrs == ref.attrs,
+                                       "dims": [list(local.dims), list(ref.dims)]})
     # the normalisation's sums: numpy's rounding, bit for bit, where a plain sum of the ranks' sums is not
     from contactlib.distributed.reduce import pairwise_sum
 
@@ -278,6 +281,7 @@ def test_surface_bit_for_bit(run):
     ranks, results = run
     for case in results["surface"]:
         assert case["identical"] and case["max_difference"] == 0.0 and case["same_attrs"], case
+        assert case["dims"] == [["y", "x"], ["y", "x"]], case  # a rank's rows of x, labelled as the serial surface
 
 
 def test_sums_round_as_numpy(run):
@@ -315,6 +319,7 @@ def test_cli_files_match_serial(tmp_path):
     done = _mpiexec(2, *cli, *surface, "-o", str(tmp_path / "s2.nc"))
     assert done.returncode == 0, done.stderr[-3000:]
     with xr.open_dataset(tmp_path / "s1.nc") as a, xr.open_dataset(tmp_path / "s2.nc") as b:
+        assert a.height.dims == b.height.dims == ("y", "x")  # a rank's rows of x are a column block of the file
         assert np.array_equal(a.height.values, b.height.values)
         for ds in (a, b):
             ds.height.attrs.pop("command")  # the command lines differ by the output's name
@@ -328,6 +333,7 @@ def test_cli_files_match_serial(tmp_path):
     assert done.stdout.count("contact_area=") == 1 and serial.stdout.split()[0] == done.stdout.split()[0]
     with xr.open_dataset(tmp_path / "o1.nc") as a, xr.open_dataset(tmp_path / "o2.nc") as b:
         assert list(a.data_vars) == list(b.data_vars) and list(a.coords) == list(b.coords)
+        assert a.pressure.dims == b.pressure.dims == ("y", "x")
         p, q = a.pressure.values, b.pressure.values
         assert np.abs(p - q).max() < 1e-10 * p.max()
         assert np.array_equal(p > 0, q > 0) and float(a.contact_area) == float(b.contact_area)
@@ -365,6 +371,7 @@ def test_solve_with_comm_labels_each_ranks_rows(run):
     invariants checked; an option the distributed path does not take is refused by name."""
     ranks, results = run
     case = results["facade"]
+    assert case["dims"] == ["y", "x"], case  # this rank's rows of x, labelled on (y, x) as the serial answer
     assert case["pressure_error"] < 1e-10 and case["same_contact_set"], case
     for name, (distributed, serial) in case["scalars"].items():
         assert abs(distributed - serial) <= 1e-10 * abs(serial), (name, distributed, serial)

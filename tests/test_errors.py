@@ -297,9 +297,9 @@ def test_every_entry_point_names_the_parameter_and_what_is_wrong(call, name, say
 
 
 def _bare(n=64, length=1e-4):
-    """Micrometre heights on a 0.1 mm window, as a bare array."""
+    """Micrometre heights on a 0.1 mm window, as a DataArray and as its bare array (indexed [ix, iy])."""
     h = contactlib.surfaces.self_affine(n, length=length, hurst=0.8, q_roll=2, q_cutoff=8, rms_height=1e-6, seed=1)
-    return h, h.values
+    return h, h.transpose("x", "y").values
 
 
 @pytest.mark.parametrize("call", [

@@ -105,7 +105,7 @@ def test_friction_on_a_padded_layer_matches_a_wide_periodic_window(dim, n, nu, t
     assert np.linalg.norm(change_wide) > 0.03 * np.linalg.norm(reference)  # friction matters here
     assert np.linalg.norm(change - change_wide) <= match * np.linalg.norm(change_wide)
     # mu_a from the deformed surface: central differences off a periodic window, so the wide one's the same way
-    wide_mu_a = contactlib.analysis.interlocking_friction(wide.pressure.values, wide.displacement.values,
+    wide_mu_a = contactlib.analysis.interlocking_friction(wide.pressure, wide.displacement,  # x and y by name
                                                           lengths=(float(wider),) * dim, periodic=False)
     assert float(padded.friction_coefficient_interlocking) == pytest.approx(wide_mu_a, rel=1e-5)
     assert float(padded.friction_coefficient_interlocking) == pytest.approx(

@@ -32,8 +32,14 @@ SCENES = {
 
 def _rough(shape, seed=3):
     n = max(shape)
-    h = contactlib.surfaces.self_affine(n, hurst=0.8, q_roll=2, q_cutoff=16, rms_slope=0.1, seed=seed).values
+    h = contactlib.surfaces.self_affine(n, hurst=0.8, q_roll=2, q_cutoff=16, rms_slope=0.1, seed=seed)
+    h = h.transpose("x", "y").values  # the bare arrays below are indexed [ix, iy]
     return np.ascontiguousarray(h[: shape[0], : shape[1]])
+
+
+def _pressure(ds):
+    """The pressure indexed [ix, iy], as the bare heights it was solved on (the field is on ("y", "x"))."""
+    return ds.pressure.transpose("x", "y").values
 
 
 def _solve(h, scene, sign=1.0, axis=0):
@@ -56,16 +62,16 @@ def test_mirrors_give_the_mirrored_pressure(scene, shape):
     """``y -> -y`` (across the sliding) and ``x -> -x`` with the sliding reversed, on even, unequal and odd grids."""
     h = _rough(shape)
     base = _solve(h, scene)
-    p = base.pressure.values
+    p = _pressure(base)
     assert base.attrs["coupling"] == "normal-tangential" or "viscoelastic steady" in base.attrs["material_model"]
     peak = float(p.max())
-    across = _solve(h[:, ::-1].copy(), scene).pressure.values[:, ::-1]
-    reversed_along = _solve(h[::-1, :].copy(), scene, sign=-1.0).pressure.values[::-1, :]
+    across = _pressure(_solve(h[:, ::-1].copy(), scene))[:, ::-1]
+    reversed_along = _pressure(_solve(h[::-1, :].copy(), scene, sign=-1.0))[::-1, :]
     assert np.abs(across - p).max() <= MIRROR_TOL * peak
     assert np.abs(reversed_along - p).max() <= MIRROR_TOL * peak
     assert float(_solve(h[::-1, :].copy(), scene, sign=-1.0).friction_coefficient_interlocking) == pytest.approx(
         float(base.friction_coefficient_interlocking), rel=1e-9)
-    same = _solve(h[::-1, :].copy(), scene).pressure.values[::-1, :]  # not reversed: another scene
+    same = _pressure(_solve(h[::-1, :].copy(), scene))[::-1, :]  # not reversed: another scene
     assert np.abs(same - p).max() > 1e-3 * peak
 
 
@@ -74,8 +80,8 @@ def test_transposed_scene_sliding_along_y_is_the_transpose(scene):
     """The scene turned by 90 degrees (sliding along y on the transposed surface): the rfft layout treats the two axes
     differently (their Nyquist modes sit on an ``fftfreq`` row and an ``rfftfreq`` column), the answer may not."""
     h = _rough((64, 64), seed=5)
-    along_x = _solve(h, scene).pressure.values
-    along_y = _solve(h.T.copy(), scene, axis=1).pressure.values
+    along_x = _pressure(_solve(h, scene))
+    along_y = _pressure(_solve(h.T.copy(), scene, axis=1))
     assert np.abs(along_y.T - along_x).max() <= MIRROR_TOL * float(along_x.max())
 
 

@@ -78,7 +78,7 @@ def test_warm_start_reaches_the_same_state_faster(material, rough64):
     kwargs = dict(E=material["E"], nu=material["nu"], tol=1e-10)
     first = contactlib.solve(rough64, mean_pressure=0.010, **kwargs)
     cold = contactlib.solve(rough64, mean_pressure=0.011, **kwargs)
-    warm = contactlib.solve(rough64, mean_pressure=0.011, initial_pressure=first.pressure.values, **kwargs)
+    warm = contactlib.solve(rough64, mean_pressure=0.011, initial_pressure=first.pressure, **kwargs)
     assert int(warm.iterations) < int(cold.iterations)
     assert np.max(np.abs(cold.pressure - warm.pressure)) < 1e-7 * float(cold.pressure.max())
 

@@ -20,7 +20,7 @@ def test_rms_gradient_periodic_spectral_and_non_periodic_by_differences(tmp_path
 
 def test_point_solves_the_prepared_surface_and_carries_its_provenance(tmp_path):
     h = contactlib.surfaces.self_affine(64, length=1e-3, hurst=0.8, q_roll=2, q_cutoff=16, rms_slope=0.1, seed=2)
-    np.savetxt(tmp_path / "m.txt", h.values.T, fmt="%.17g")
+    np.savetxt(tmp_path / "m.txt", h.transpose("y", "x").values, fmt="%.17g")  # one row per y
     prepared = contactlib.surfaces.read(tmp_path / "m.txt", length=1e-3, unit="m", periodic=True, detrend="mean")
     prepared.to_dataset().to_netcdf(tmp_path / "m.nc")
     constants = {"surface_file": str(tmp_path / "m.nc"), "E": 1.0, "nu": 0.5, "tol": 1e-8, "max_iter": 1000,

@@ -79,7 +79,7 @@ def test_band_edge_modes_are_kept_whatever_the_window(band):
     expected = (k2 >= band.get("q_low", 1) ** 2) & (k2 <= band["q_cutoff"] ** 2)
     for length in [1.0, 3.0, 7.0, 10**1.5]:
         h = contactlib.surfaces.self_affine(n, length=length, **kw)
-        amplitude = np.abs(np.fft.rfftn(h.values))
+        amplitude = np.abs(np.fft.rfftn(h.transpose("x", ...).values))  # indexed [ix, iy], as i and j
         np.testing.assert_array_equal(amplitude > 1e-9 * amplitude.max(), expected, err_msg=f"length={length}")
         np.testing.assert_allclose(h.values, unit.values, rtol=0, atol=1e-12)
 
@@ -113,7 +113,7 @@ def test_anisotropy_tensor_matches_slope_products():
     h = contactlib.surfaces.self_affine(128, hurst=0.8, q_roll=2, q_cutoff=32, rms_slope=0.1, seed=4,
                                         anisotropy=0.4, angle=0.5)
     m = analysis.anisotropy_tensor(h, 0, 64).M.values
-    gx, gy = (np.fft.ifftn(1j * q * np.fft.fftn(h.values)).real for q in np.meshgrid(
+    gx, gy = (np.fft.ifftn(1j * q * np.fft.fftn(h.transpose("x", "y").values)).real for q in np.meshgrid(
         2 * np.pi * np.fft.fftfreq(128, 1 / 128), 2 * np.pi * np.fft.fftfreq(128, 1 / 128), indexing="ij"))
     np.testing.assert_allclose(m, [[np.mean(gx * gx), np.mean(gx * gy)], [np.mean(gx * gy), np.mean(gy * gy)]],
                                rtol=1e-10)
@@ -121,7 +121,7 @@ def test_anisotropy_tensor_matches_slope_products():
 
 def test_wavy_and_spheres():
     w = contactlib.surfaces.wavy(64, amplitude=2.0, dim=2)
-    assert float(w.max()) == pytest.approx(2.0) and w.dims == ("x", "y")
+    assert float(w.max()) == pytest.approx(2.0) and w.dims == ("y", "x")
     lattice = contactlib.surfaces.spheres(64, radius=0.1, lattice=4, summit_height=0.01)
     assert float(lattice.max()) <= 0.01 + 1e-15
     labels, areas = analysis.contact_clusters(lattice.values > 0)

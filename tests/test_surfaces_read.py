@@ -26,18 +26,25 @@ def profile():
                                            seed=4, dim=1)
 
 
+def bare(h: xr.DataArray) -> np.ndarray:
+    """The bare array of a surface, indexed ``[ix, iy]`` (as files without dim names and SurfaceTopography hold
+    it): a contactlib surface is on ``("y", "x")``."""
+    return h.transpose("x", ...).values
+
+
 def write_native(h: xr.DataArray, path, fmt: str) -> dict:
     """Write ``h`` [m] in a native format; returns the read() arguments the file does not carry."""
     if fmt == "netcdf":
         h.to_dataset().to_netcdf(path)
         return {}
-    if fmt == "npy":
-        np.save(path, h.values)
+    if fmt == "npy":  # a bare array is indexed [ix, iy]
+        np.save(path, bare(h))
         return {"length": LENGTH, "unit": "m", "periodic": True}
     if fmt == "matrix":  # one row per y, repr precision
-        np.savetxt(path, h.values.T if h.ndim == 2 else h.values[None, :], fmt="%.17g")
+        np.savetxt(path, h.transpose("y", "x").values if h.ndim == 2 else h.values[None, :], fmt="%.17g")
         return {"length": LENGTH, "unit": "m", "periodic": True}
-    columns = [*np.meshgrid(*(h[d].values for d in h.dims), indexing="ij"), h.values]
+    axes = ("x", "y")[: h.ndim]  # columns x (y) z
+    columns = [*np.meshgrid(*(h[d].values for d in axes), indexing="ij"), bare(h)]
     np.savetxt(path, np.column_stack([c.ravel() for c in columns]), fmt="%.17g")
     return {"unit": "m", "periodic": True}
 
@@ -84,7 +91,7 @@ def test_read_file_solves_bit_for_bit_as_the_original(tmp_path, surface):
 def test_a_measurement_is_solved_non_periodic_unless_told(tmp_path):
     sphere = contactlib.surfaces.paraboloid(64, length=LENGTH, radius=5e-3)  # an isolated footprint
     path = tmp_path / "sphere.txt"
-    np.savetxt(path, sphere.values.T, fmt="%.17g")
+    np.savetxt(path, sphere.transpose("y", "x").values, fmt="%.17g")  # one row per y
     measured = read(path, length=LENGTH, unit="m", detrend="none")
     assert measured.attrs["periodic"] == 0
     out = contactlib.solve(measured, E=1.0, nu=0.5, mean_pressure=1e-6)
@@ -96,7 +103,7 @@ def test_a_measurement_is_solved_non_periodic_unless_told(tmp_path):
 
 def test_units_are_converted_to_metres_and_recorded(tmp_path, surface):
     path = tmp_path / "s_um.npy"
-    np.save(path, surface.values * 1e6)
+    np.save(path, bare(surface) * 1e6)
     out = read(path, length=LENGTH * 1e6, unit="um", periodic=True, detrend="none")
     np.testing.assert_allclose(out.values, surface.values, rtol=4e-16, atol=0)  # one rounding each way
     np.testing.assert_allclose(out.x.values, surface.x.values, rtol=4e-16, atol=0)
@@ -108,8 +115,8 @@ def test_units_are_converted_to_metres_and_recorded(tmp_path, surface):
 def test_plane_detrending_removes_an_added_plane_and_is_recorded(tmp_path, surface):
     x, y = np.meshgrid(surface.x.values, surface.y.values, indexing="ij")
     slope_x, slope_y, offset = 0.03, -0.02, 5e-6  # [1], [1], [m]: a tilt far above the roughness (rms slope 0.1)
-    tilted = surface.values + offset + slope_x * x + slope_y * y
-    np.save(tmp_path / "plain.npy", surface.values)
+    tilted = bare(surface) + offset + slope_x * x + slope_y * y
+    np.save(tmp_path / "plain.npy", bare(surface))
     np.save(tmp_path / "tilted.npy", tilted)
     args = {"length": LENGTH, "unit": "m", "periodic": False}
     plain, out = read(tmp_path / "plain.npy", **args), read(tmp_path / "tilted.npy", **args)
@@ -119,7 +126,7 @@ def test_plane_detrending_removes_an_added_plane_and_is_recorded(tmp_path, surfa
     assert out.attrs["detrend_slope_x"] - plain.attrs["detrend_slope_x"] == pytest.approx(slope_x, rel=1e-12)
     assert out.attrs["detrend_slope_y"] - plain.attrs["detrend_slope_y"] == pytest.approx(slope_y, rel=1e-12)
     # the plane is gone: what is left has no mean and no tilt
-    rest = np.polynomial.polynomial.polyfit(x.ravel(), out.values.ravel(), 1)
+    rest = np.polynomial.polynomial.polyfit(x.ravel(), bare(out).ravel(), 1)
     assert abs(rest[0]) < 10 * rounding and abs(rest[1]) < 1e-12
     mean = read(tmp_path / "tilted.npy", detrend="mean", **args)
     assert abs(float(mean.mean())) < 10 * rounding and mean.attrs["detrend"] == "mean"
@@ -159,14 +166,14 @@ def test_missing_points_are_refused_with_their_count_or_filled(tmp_path):
     args = {"length": 1e-4, "unit": "m", "detrend": "none"}
     mean = read(path, fill="mean", **args)
     valid = np.isfinite(holes)
-    assert np.all(mean.values[~valid] == holes[valid].mean()) and np.array_equal(mean.values[valid], holes[valid])
+    assert np.all(bare(mean)[~valid] == holes[valid].mean()) and np.array_equal(bare(mean)[valid], holes[valid])
     assert mean.attrs["fill"] == "mean" and mean.attrs["filled_points"] == 14
     interp = read(path, fill="interpolate", **args)
     interior = ~valid.copy()
     interior[0, 0] = False
-    np.testing.assert_allclose(interp.values[interior], plane[interior], rtol=1e-13)
-    assert interp.values[0, 0] in (plane[0, 1], plane[1, 0], plane[1, 1])  # a nearest neighbour's height
-    assert interp.attrs["fill"] == "interpolate" and np.array_equal(interp.values[valid], holes[valid])
+    np.testing.assert_allclose(bare(interp)[interior], plane[interior], rtol=1e-13)
+    assert bare(interp)[0, 0] in (plane[0, 1], plane[1, 0], plane[1, 1])  # a nearest neighbour's height
+    assert interp.attrs["fill"] == "interpolate" and np.array_equal(bare(interp)[valid], holes[valid])
     line = np.linspace(0, 1e-6, 50)
     gappy = line.copy()
     gappy[[0, 20, 21, 22]] = np.nan
@@ -192,7 +199,7 @@ def test_bad_text_files_are_refused_naming_the_file(tmp_path, content, message):
 
 
 def test_missing_size_or_unit_and_contradictions_are_refused(tmp_path, surface):
-    path = _save(tmp_path / "s.npy", surface.values)
+    path = _save(tmp_path / "s.npy", bare(surface))
     with pytest.raises(ValueError, match=r"s.npy: the file does not carry its physical size; pass length="):
         read(path, unit="m")
     with pytest.raises(ValueError, match=r"s.npy: the file does not state its length unit; pass unit="):
@@ -242,7 +249,7 @@ def _topography(h: xr.DataArray, unit="m", scale=1.0):
     sizes = tuple(h.attrs["length"] * scale for _ in h.dims)
     if h.ndim == 1:
         return st.UniformLineScan(h.values * scale, sizes[0], unit=unit, periodic=True)
-    return st.Topography(h.values * scale, sizes, unit=unit, periodic=True)
+    return st.Topography(bare(h) * scale, sizes, unit=unit, periodic=True)
 
 
 @pytest.mark.parametrize("fmt", ["x3p", "gwy"])
@@ -281,7 +288,7 @@ def test_surfacetopography_file_without_size_needs_length(tmp_path, surface):
     h5py = pytest.importorskip("h5py", reason="h5py (a SurfaceTopography dependency) is not installed")
     path = tmp_path / "challenge.h5"  # the Contact Mechanics Challenge's HDF5 layout: a 'surface' array
     with h5py.File(path, "w") as f:
-        f["surface"] = surface.values
+        f["surface"] = bare(surface)
     with pytest.raises(ValueError, match="challenge.h5: the file does not carry its physical size"):
         read(path, unit="m")
     out = read(path, length=LENGTH, unit="m", periodic=True, detrend="none")

@@ -183,7 +183,7 @@ def test_fields_are_stacked_with_their_coordinates(tmp_path):
     grid = {"anisotropy": [1.0, 0.3], "seed": [0]}
     ds = sweep.run_grid(functools.partial(studies.anisotropy_point, **constants), grid,
                         labels=studies.STUDY_VARIABLES, progress=False, attrs={"config": {"grid": grid}})
-    assert ds.pressure.dims == ("anisotropy", "seed", "x", "y") and ds.pressure.attrs["units"] == "Pa"
+    assert ds.pressure.dims == ("anisotropy", "seed", "y", "x") and ds.pressure.attrs["units"] == "Pa"
     assert ds.x.attrs["units"] == "m"
     assert json.loads(ds.attrs["config"]) == {"grid": grid}
     # the more anisotropic surface gives the more anisotropic pressure field

@@ -24,9 +24,10 @@ class Material:
         self.E, self.nu = E, nu
 
 
-def footprint_forces(pressure: np.ndarray, table: ts.AsperityTable) -> np.ndarray:
+def footprint_forces(pressure: xr.DataArray, table: ts.AsperityTable) -> np.ndarray:
     """Force on each asperity from a full-grid pressure field: the pressure inside its footprint (the
     test's own loop over the whole grid, to check :func:`contactlib.two_scale.asperity_forces`)."""
+    pressure = pressure.transpose("x", "y").values  # indexed [ix, iy], as dx and dy below
     n = pressure.shape[0]
     h = table.length / n
     x = np.arange(n) * h
@@ -121,7 +122,7 @@ def few():
 def test_few_asperities_match_the_full_solver(few):
     h, full, macro, two = few
     table = ts.asperity_table(h)
-    reference = footprint_forces(full.pressure.values, table)
+    reference = footprint_forces(full.pressure, table)
     scale = reference.max()
     # two-scale: the full solver's answer (forces within 1 %, here far closer), pressure field and approach
     np.testing.assert_allclose(two.force, reference, rtol=0, atol=1e-2 * scale)
@@ -139,7 +140,7 @@ def test_few_asperities_match_the_full_solver(few):
 
 def test_out_of_contact_asperities_carry_zero_force(few):
     h, full, macro, two = few
-    reference = footprint_forces(full.pressure.values, ts.asperity_table(h))
+    reference = footprint_forces(full.pressure, ts.asperity_table(h))
     low = 6  # summit 0.003 below the others' ~0.006
     assert reference[low] == 0.0
     assert float(two.force[low]) == 0.0 and float(macro.force[low]) == 0.0
@@ -169,7 +170,7 @@ def test_periodic_lattice_and_random_field_three_ways():
     for h, load in ((lattice, 1e-5), (random_field, 3e-6)):
         table = ts.asperity_table(h)
         full = contactlib.solve(h, E=E, nu=NU, mean_pressure=load)
-        reference = footprint_forces(full.pressure.values, table)
+        reference = footprint_forces(full.pressure, table)
         two = ts.solve(h, E=E, nu=NU, mean_pressure=load)
         macro = ts.solve(h, E=E, nu=NU, mean_pressure=load, scale="macro")
         scale = reference.max()
@@ -193,7 +194,7 @@ def test_dataset_input_equals_the_dataarray():
 
 def test_labels_and_provenance(few, tmp_path):
     _, _, _, two = few
-    assert two.force.dims == ("asperity",) and two.pressure.dims == ("x", "y")
+    assert two.force.dims == ("asperity",) and two.pressure.dims == ("y", "x")
     for name in list(two.data_vars) + list(two.coords):
         assert {"units", "long_name"} <= set(two[name].attrs), name
     assert two.force.attrs["units"] == "Pa m2"
@@ -316,7 +317,7 @@ def test_many_sagging_asperities_converge_with_the_coarse_correction(monkeypatch
     two = ts.solve(field, E=E, nu=NU, penetration=approach, tol=1e-4)
     assert two.attrs["micro_iterations"] <= 6
     full = contactlib.solve(field, E=E, nu=NU, penetration=approach)
-    reference = ts.asperity_forces(full.pressure.values, table)
+    reference = ts.asperity_forces(full.pressure, table)
     assert np.max(np.abs(two.force.values - reference)) < 1e-3 * reference.max()
     assert float(two.mean_pressure) == pytest.approx(float(full.mean_pressure), rel=1e-4)
     # plain block Jacobi (no coarse correction) does not converge on the same field
@@ -342,7 +343,7 @@ def test_non_periodic_field_matches_the_full_solver():
     h = _few_asperities()
     h.attrs["periodic"] = 0
     full = contactlib.solve(h, E=E, nu=NU, mean_pressure=2e-5)
-    reference = ts.asperity_forces(full.pressure.values, ts.asperity_table(h))
+    reference = ts.asperity_forces(full.pressure, ts.asperity_table(h))
     two = ts.solve(h, E=E, nu=NU, mean_pressure=2e-5)
     macro = ts.solve(h, E=E, nu=NU, mean_pressure=2e-5, scale="macro")
     assert two.attrs["interaction"] == "direct" and two.attrs["periodic"] == 0
@@ -391,7 +392,7 @@ def test_force_tolerance_stops_within_it_of_the_full_solver():
     table = ts.asperity_table(field)
     approach = float(field.max()) - 0.6 * float(np.mean(table.summit_height))
     full = contactlib.solve(field, E=E, nu=NU, penetration=approach)
-    reference = ts.asperity_forces(full.pressure.values, table)
+    reference = ts.asperity_forces(full.pressure, table)
     for force_tol in (1e-2, 1e-4):
         two = ts.solve(field, E=E, nu=NU, penetration=approach, force_tol=force_tol)
         assert two.attrs["micro_force_change"] <= force_tol and two.attrs["force_tol"] == force_tol
@@ -749,7 +750,7 @@ def test_finite_contact_size_halves_the_macro_error_of_a_dense_field():
     table = ts.asperity_table(field)
     approach = float(field.max()) - 0.6 * float(np.mean(table.summit_height))
     full = contactlib.solve(field, E=E, nu=NU, penetration=approach, tol=1e-8)
-    reference = ts.asperity_forces(full.pressure.values, table)
+    reference = ts.asperity_forces(full.pressure, table)
     errors = {}
     for finite_size in (False, True):
         out = ts.solve(field, E=E, nu=NU, penetration=approach, scale="macro", fields=False, finite_size=finite_size)

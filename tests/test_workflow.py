@@ -95,7 +95,7 @@ def test_tiny_end_to_end_run_and_report(workdir):
         ratio = ds.hertz_peak_pressure / ds.hertz_peak_pressure_exact
         assert float(abs(ratio.sel(n=64) - 1).max()) < 0.05
     with xr.open_dataset(results / "surfaces" / "anisotropy.nc") as ds:
-        assert ds.height.dims == ("anisotropy", "seed", "x", "y") and ds.height.attrs["units"] == "m"
+        assert ds.height.dims == ("anisotropy", "seed", "y", "x") and ds.height.attrs["units"] == "m"
     with xr.open_dataset(results / "speed_vs_error.nc") as ds:
         assert dict(ds.sizes) == {"scene": 4, "n": 2, "tol": 2, "kernel": 2}
         assert (ds.status == 0).all()
@@ -128,7 +128,7 @@ def test_tiny_end_to_end_run_and_report(workdir):
         area = ds.contact_area.isel(seed=0, glassy_ratio=0)
         assert float(area.sel(zeta=1e-3)) > float(area.sel(zeta=1000.0))  # relaxed to glassy
     with xr.open_dataset(results / "fig2_viscoelastic_map.nc") as ds:
-        assert ds.pressure.dims == ("seed", "x", "y") and ds.pressure.attrs["units"] == "Pa"
+        assert ds.pressure.dims == ("seed", "y", "x") and ds.pressure.attrs["units"] == "Pa"
         assert float(ds.contact_area.isel(seed=0)) < float(ds.contact_area_at_rest.isel(seed=0))
     with xr.open_dataset(results / "two_scale.nc") as ds:
         assert dict(ds.sizes) == {"count": 2, "coverage": 1, "seed": 1} and (ds.status == 0).all()

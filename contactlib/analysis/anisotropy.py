@@ -20,6 +20,7 @@ def anisotropy_tensor(field, zeta1: float, zeta2: float, *, length=None, n_theta
     Parameters
     ----------
     field : DataArray or ndarray (2D)
+        A DataArray's x and y read by name; an ndarray indexed ``[ix, iy]``.
     zeta1, zeta2 : float
         Band edges as multiples of ``q0 = 2 pi / Lx``, ``zeta1 < zeta2``.
 

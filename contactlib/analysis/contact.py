@@ -63,7 +63,8 @@ def contact_clusters(pressure, *, periodic: bool = True, element_area: float = 1
     Returns
     -------
     labels : ndarray of int
-        0 outside contact, 1..n for the clusters, numbered in order of first appearance.
+        0 outside contact, 1..n for the clusters, numbered in order of first appearance; on the axes of
+        ``pressure`` as given (a DataArray's ``.values``: the labelling does not depend on which axis is x).
     areas : ndarray of float
         Area of each cluster (element count times ``element_area``).
 

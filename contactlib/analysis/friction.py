@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..core.inputs import real_values
+from ..core.inputs import solver_values
 
 
 def directional_slope(field: np.ndarray, *, lengths, direction: float = 0.0, periodic: bool = True) -> np.ndarray:
@@ -13,8 +13,8 @@ def directional_slope(field: np.ndarray, *, lengths, direction: float = 0.0, per
 
     Parameters
     ----------
-    field : ndarray
-        1D or 2D field.
+    field : xarray.DataArray or ndarray
+        1D or 2D field: a DataArray's x and y read by name, an ndarray indexed ``[ix, iy]``.
     lengths : sequence of float
         Window size per axis [length].
     direction : float
@@ -32,7 +32,7 @@ def directional_slope(field: np.ndarray, *, lengths, direction: float = 0.0, per
     ValueError
         Naming ``lengths`` when not finite and > 0.
     """
-    field = real_values(field, "field")
+    field = solver_values(field, "field")
     window = np.broadcast_to(np.asarray(lengths, dtype=float), (field.ndim,))
     if not np.all(np.isfinite(window) & (window > 0)):
         raise ValueError(f"lengths must be finite and > 0, got {lengths!r}")
@@ -79,10 +79,11 @@ def interlocking_friction(pressure, surface, *, lengths, direction: float = 0.0,
 
     Parameters
     ----------
-    pressure : ndarray
-        Pressure field [pressure].
-    surface : ndarray
-        The deformed surface's normal displacement ``u_z`` [length] (positive into the body), on the same grid.
+    pressure : xarray.DataArray or ndarray
+        Pressure field [pressure]: a DataArray's x and y read by name, an ndarray indexed ``[ix, iy]``.
+    surface : xarray.DataArray or ndarray
+        The deformed surface's normal displacement ``u_z`` [length] (positive into the body), on the same grid
+        (read as ``pressure``).
     lengths : sequence of float
         Window size per axis [length].
     direction : float
@@ -102,7 +103,7 @@ def interlocking_friction(pressure, surface, *, lengths, direction: float = 0.0,
     ValueError
         Naming ``lengths`` when not finite and > 0.
     """
-    p = real_values(pressure, "pressure")
+    p = solver_values(pressure, "pressure")
     total = float(p.sum())
     if total <= 0:
         return 0.0
@@ -125,7 +126,7 @@ class SlopeCache:
     def slope(self, heights, *, lengths, direction: float, periodic: bool) -> np.ndarray:
         """:func:`directional_slope` of ``heights``, the kept one where the values, window, direction and periodicity
         are the same."""
-        heights = real_values(heights, "heights")
+        heights = solver_values(heights, "heights")
         key = (tuple(np.broadcast_to(np.asarray(lengths, dtype=float), (heights.ndim,))), float(direction),
                bool(periodic))
         if self.kept is not None:

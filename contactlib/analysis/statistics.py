@@ -10,14 +10,16 @@ import numpy as np
 import xarray as xr
 
 from ..core.grid import Grid
-from ..core.inputs import window_of, check_whole, real_values
+from ..core.inputs import check_whole, in_solver_axes, real_values, window_of
 from ..core.labels import attrs_for
 
 
 def values_and_grid(field, length=None) -> tuple[np.ndarray, Grid]:
-    """The field's values and grid, refused unless 1D or 2D, at least 2 points a side, finite, on a window of
+    """The field's values (indexed ``[ix, iy]``: a DataArray's x and y read by name, a bare array as given) and
+    grid, refused unless 1D or 2D, at least 2 points a side, finite, on a window of
     finite positive lengths."""
     if isinstance(field, xr.DataArray):
+        field = in_solver_axes(field)  # x and y by name: [ix, iy], as a bare array
         values = real_values(field.values, "field")
         if length is None and values.ndim in (1, 2) and min(values.shape, default=0) >= 2:
             length = window_of(field)  # evenly spaced coordinates, as solve reads them

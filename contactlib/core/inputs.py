@@ -128,19 +128,45 @@ def load_history(load, times: np.ndarray, name: str) -> np.ndarray:
     return values
 
 
+def in_solver_axes(field):
+    """``field`` with its axes in the solvers' index order ``[ix, iy]``: a DataArray with both an ``"x"`` and a
+    ``"y"`` dimension transposed by name to end in ``("x", "y")`` (the ``("y", "x")`` fields contactlib returns, and
+    ``("x", "y")`` ones from older files, read the same); anything else unchanged (a bare array is already
+    ``[ix, iy]``; a DataArray on other dims is read by position)."""
+    if isinstance(field, xr.DataArray) and "x" in field.dims and "y" in field.dims:
+        return field.transpose(..., "x", "y")
+    return field
+
+
+def solver_values(field, name: str) -> np.ndarray:
+    """A field given to an entry point (``initial_pressure``, a pressure or gap to analyse) as a float array indexed
+    ``[ix, iy]``: a DataArray on ``"x"`` and ``"y"`` by name (:func:`in_solver_axes`), a bare array as it is;
+    refused by ``name`` as :func:`real_values` refuses."""
+    field = in_solver_axes(field)
+    return real_values(field.values if isinstance(field, xr.DataArray) else field, name)
+
+
 def grid_of(heights, length=None) -> tuple[np.ndarray, Grid, tuple[str, ...], dict]:
     """Heights array, grid, dim names and coords of a DataArray or ndarray input: the one way every entry point
     reads heights.
 
     A DataArray (as :mod:`contactlib.surfaces` makes them) carries its window: coordinate step times points
-    (``length`` may repeat it). A bare array (ndarray, nested list) has no window, so ``length`` [length] is
-    required: there is no default window (a 1 m one made micrometre heights come back in full contact).
+    (``length`` may repeat it). Its axes are read by name: a surface on ``("y", "x")`` (as contactlib makes them)
+    and one on ``("x", "y")`` give the same array (:func:`in_solver_axes`); other dims are read by position.
+    A bare array (ndarray, nested list) is indexed ``[ix, iy]`` (rows along x, as tamaas and ContactMechanics
+    index theirs; ``surface.transpose("x", "y").values`` is that array of a DataArray surface), and has no window,
+    so ``length`` [length] is required: there is no default window (a 1 m one made micrometre heights come back in
+    full contact).
+
+    Returns the array ``[ix, iy]``, its grid, the solver's dim names (``("x", "y")``, ``("x",)`` or a DataArray's
+    own) and the coordinates.
 
     Raises ``ValueError`` naming ``heights`` (not an array of real numbers, ragged, complex, not 1D or 2D, fewer
     than 2 points, NaN) or ``length`` (missing for a bare array, not a positive number per axis, contradicting the
     coordinates).
     """
     if isinstance(heights, xr.DataArray):
+        heights = in_solver_axes(heights)
         values = real_values(heights.values, "heights")
         dims = tuple(heights.dims)
         window = window_of(heights) if all(d in heights.coords for d in dims) else None

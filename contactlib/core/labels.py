@@ -1,6 +1,11 @@
 """The single registry of variable labels (name -> units and long_name), and the labelling of a solver's
 state as a Dataset.
 
+Axis order: the solvers index a surface's arrays ``[ix, iy]`` (``SOLVER_AXES``); every 2D field contactlib returns
+or writes is labelled on ``("y", "x")`` (``FIELD_AXES``: rows are y, the numpy and image convention), so that
+xarray's ``.plot()`` puts x on the horizontal axis. :func:`field_variable` is the one place that turns the one into
+the other (a transposed view, no copy); :func:`contactlib.core.inputs.solver_values` reads a field back by name.
+
 Units are templates: ``{length}`` and ``{pressure}`` are filled with the units the caller
 declares (SI by default), because the solvers themselves are unit-agnostic.
 """
@@ -89,6 +94,31 @@ VARIABLES: dict[str, dict[str, str]] = {
 }
 
 
+SOLVER_AXES = ("x", "y")
+"""Axis names of a solver's 2D arrays, in their index order ``[ix, iy]``."""
+
+FIELD_AXES = ("y", "x")
+"""Dimension order of every labelled 2D field contactlib returns or writes (x last: horizontal in ``.plot()``)."""
+
+
+def field_dims(dims) -> tuple[str, ...]:
+    """The labelled dims of a solver array on ``dims``: trailing ``("x", "y")`` become ``("y", "x")``; any other
+    dims (a profile's ``("x",)``, leading ones such as ``saved_time``) are kept."""
+    dims = tuple(dims)
+    return dims[:-2] + FIELD_AXES if dims[-2:] == SOLVER_AXES else dims
+
+
+def field_values(dims, values):
+    """``values`` (a solver array on ``dims``) as :func:`field_dims` labels them: the last two axes swapped (a
+    view) where they are ``("x", "y")``."""
+    return np.swapaxes(values, -1, -2) if tuple(dims)[-2:] == SOLVER_AXES else values
+
+
+def field_variable(dims, values, attrs=None) -> xr.Variable:
+    """A solver array indexed ``[..., ix, iy]`` on ``dims`` as a labelled variable on :func:`field_dims`."""
+    return xr.Variable(field_dims(dims), field_values(dims, values), attrs)
+
+
 def attrs_for(name: str, *, length: str = "m", pressure: str = "Pa") -> dict[str, str]:
     """CF attributes of ``name`` with the declared units substituted."""
     entry = VARIABLES[name]
@@ -118,14 +148,15 @@ def window_variables(state, lengths, *, periodic: bool, length_unit: str = "m", 
 
 
 def to_dataset(state, *, dims, coords, length_unit="m", pressure_unit="Pa", extra=None) -> xr.Dataset:
-    """Label a solver's :class:`contactlib.solvers.ContactState` as a CF-style Dataset: its fields on
-    ``dims``, its scalars, units and long names from :data:`VARIABLES`; ``extra`` (name: variable), the
-    caller's variables after them, in the same construction (each later ``Dataset.update`` merges the
-    whole dataset: about 1 ms at 512^2)."""
+    """Label a solver's :class:`contactlib.solvers.ContactState` as a CF-style Dataset: its fields (solver arrays on
+    ``dims``) labelled on :func:`field_dims` (a surface's on ``("y", "x")``), its scalars, units and long names
+    from :data:`VARIABLES`; ``extra`` (name: variable), the caller's variables after them, in the same
+    construction (each later ``Dataset.update`` merges the whole dataset: about 1 ms at 512^2)."""
     def a(name):
         return attrs_for(name, length=length_unit, pressure=pressure_unit)
 
-    fields = {name: (dims, getattr(state, name), a(name)) for name in ("pressure", "gap", "displacement")}
+    fields = {name: field_variable(dims, getattr(state, name), a(name))
+              for name in ("pressure", "gap", "displacement")}
     scalars = {
         "contact_area": float(np.count_nonzero(state.pressure > 0)) / state.pressure.size,
         "mean_pressure": state.mean_pressure,

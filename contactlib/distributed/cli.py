@@ -14,6 +14,7 @@ import numpy as np
 import xarray as xr
 
 from .._version import __version__
+from ..core.inputs import in_solver_axes
 from ..core.labels import attrs_for
 from .io import read_slab, write_slabs
 from .surfaces import self_affine_slab
@@ -50,7 +51,8 @@ def surface(args, synthetic_length) -> int:
                f"{time.perf_counter() - start:.2f} s; writing {args.output}")
     x = np.concatenate(comm.allgather(h["x"].values))
     header = xr.Dataset(coords={"x": ("x", x, dict(h["x"].attrs)), "y": ("y", h["y"].values, dict(h["y"].attrs))})
-    write_slabs(comm, args.output, shape=(x.size, h.shape[1]), fields={"height": (h.values, dict(h.attrs))},
+    rows = in_solver_axes(h).values  # this rank's rows of x, [ix, iy]
+    write_slabs(comm, args.output, shape=(x.size, rows.shape[1]), fields={"height": (rows, dict(h.attrs))},
                 header=header)
     return 0
 
@@ -81,7 +83,8 @@ def solve(args) -> int:
     heights = read_slab(comm, args.surface, length=length, unit=args.unit, periodic=args.periodic)
     periodic = bool(heights.attrs["periodic"])
     lengths = tuple(heights.attrs["length"])
-    shape = (comm.allreduce(heights.shape[0]), heights.shape[1])
+    rows = in_solver_axes(heights).values  # this rank's rows of x, [ix, iy]
+    shape = (comm.allreduce(rows.shape[0]), rows.shape[1])
     _log(comm, f"contactlib solve: {shape[0]}x{shape[1]} on {comm.Get_size()} ranks, "
                f"{'periodic' if periodic else 'non-periodic'}")
     last = [time.perf_counter()]
@@ -96,7 +99,7 @@ def solve(args) -> int:
     start = time.perf_counter()
     status = 0
     try:
-        state = distributed_solve(heights.values, comm=comm, E=args.E, nu=args.nu, length=lengths, periodic=periodic,
+        state = distributed_solve(rows, comm=comm, E=args.E, nu=args.nu, length=lengths, periodic=periodic,
                                   mean_pressure=args.mean_pressure, penetration=args.penetration, tol=args.tol,
                                   max_iter=args.max_iter, progress=progress, overwrite_heights=True)
     except ConvergenceError as err:

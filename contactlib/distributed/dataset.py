@@ -1,10 +1,10 @@
 """``contactlib.solve(heights, ..., comm=MPI.COMM_WORLD)``: the distributed solve (:func:`.normal_contact.solve`)
 behind the serial entry point, its answer labelled as the serial one for this rank's rows.
 
-Each rank passes its own rows of the heights (:func:`contactlib.distributed.slabs.slab_of`,
-:func:`contactlib.distributed.io.read_slab`) or the generator's arguments, and gets a Dataset of those rows: the
-fields on ``(x, y)`` with ``x`` the rows' positions in the window (so the ranks' datasets concatenate along ``x``),
-the scalars of the whole grid, and ``attrs['row_start']`` / ``attrs['distributed_ranks']``. What is distributed: a 2D
+Each rank passes its own rows of x of the heights (:func:`contactlib.distributed.slabs.slab_of` of a bare array
+indexed ``[ix, iy]``, :func:`contactlib.distributed.io.read_slab`) or the generator's arguments, and gets a Dataset of
+those rows: the fields on ``("y", "x")`` as the serial ones, with ``x`` its rows' positions in the window (so the
+ranks' datasets concatenate along ``x``), the scalars of the whole grid, and ``attrs['row_start']`` / ``attrs['distributed_ranks']``. What is distributed: a 2D
 elastic half-space with the spectral kernel, or a periodic frictionless layer, periodic or not, under load or
 displacement control. The other options of :func:`contactlib.solve` are refused by name.
 """
@@ -17,8 +17,8 @@ import numpy as np
 import xarray as xr
 
 from .._version import __version__
-from ..core.inputs import lengths_of
-from ..core.labels import attrs_for
+from ..core.inputs import in_solver_axes, lengths_of
+from ..core.labels import SOLVER_AXES, attrs_for, field_variable
 from ..errors import ConvergenceError
 from ..model.materials import Elastic, contact_modulus
 from .normal_contact import solve as distributed_solve
@@ -87,7 +87,7 @@ def solve(heights, *, comm, E, nu, material, layer, periodic, length, tol, max_i
     x_given = None
     if isinstance(heights, xr.DataArray):
         x_given = heights["x"].values if "x" in heights.coords else None
-        heights = heights.values
+        heights = in_solver_axes(heights).values  # this rank's rows of x, [ix, iy]
     periodic = True if periodic is None else bool(periodic)
     tol = 1e-8 if tol is None else tol
     start = time.perf_counter()
@@ -121,7 +121,8 @@ def _label(comm, state, heights, length, x_given, periodic, E, nu, tol, max_iter
     if not periodic:
         scalars["normal_force"] = state.mean_pressure * window_area
         scalars["contact_radius"] = float(np.sqrt(state.contact_area * window_area / np.pi))
-    data = {name: (("x", "y"), getattr(state, name), a(name)) for name in ("pressure", "gap", "displacement")}
+    data = {name: field_variable(SOLVER_AXES, getattr(state, name), a(name))  # rows of x, labelled on (y, x)
+            for name in ("pressure", "gap", "displacement")}
     data.update({name: ((), value, a(name)) for name, value in scalars.items()})
     attrs = {"solver": state.solver, "periodic": int(periodic), "tol": tol, "max_iter": int(max_iter), "E": float(E),
              "nu": float(nu), "E_star": contact_modulus(E, nu),

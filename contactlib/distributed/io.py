@@ -1,7 +1,9 @@
 """Surfaces read and results written by slab, as the NetCDF files of the serial command line.
 
-Reading: each rank reads its rows of the ``height`` variable with netCDF4's slicing (HDF5 reads only those
-chunks/rows), never the whole field.
+Reading: each rank reads its rows of x of the ``height`` variable with netCDF4's slicing (HDF5 reads only those
+chunks), never the whole field. A rank's slab is rows of x in memory (``[ix, iy]``, as the solvers index), and the
+files hold 2D fields on ``("y", "x")`` as every contactlib file does (``("x", "y")`` files of older versions are read
+too), so a rank reads and writes a column block of the file's variable: netCDF4's hyperslabs take either.
 
 Writing: one NetCDF file that the serial tools open, written in rank order. The netCDF4 wheels from PyPI are
 not parallel-HDF5 builds (``netCDF4.__has_parallel4_support__`` is 0), so ranks cannot write one file at once;
@@ -20,7 +22,7 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
-from ..core.labels import attrs_for
+from ..core.labels import SOLVER_AXES, attrs_for, field_dims, field_values
 from ..surfaces.measured import PROVENANCE, resolve_lengths, resolve_unit, file_sha256
 from ..surfaces.preparation import to_metres
 from .slabs import Slabs
@@ -39,12 +41,14 @@ def read_slab(comm, path, *, length=None, unit: str | None = None, periodic: boo
         if "height" not in nc.variables:
             raise ValueError(f"{path}: a distributed solve reads contactlib NetCDF surfaces (a 'height' variable)")
         var = nc["height"]
-        if var.dimensions != ("x", "y"):
-            raise ValueError(f"{path}: 'height' has dims {var.dimensions}; a distributed solve reads ('x', 'y')")
+        if var.dimensions not in (("y", "x"), ("x", "y")):
+            raise ValueError(f"{path}: 'height' has dims {var.dimensions}; a distributed solve reads ('y', 'x') "
+                             "or ('x', 'y')")
         var.set_auto_mask(False)
-        nx, ny = var.shape
+        rows_along_x = var.dimensions == ("x", "y")
+        nx, ny = var.shape if rows_along_x else var.shape[::-1]
         start, stop = Slabs(nx, comm.Get_size()).bounds(comm.Get_rank())
-        raw = np.asarray(var[start:stop, :], dtype=float)
+        raw = np.asarray(var[start:stop, :] if rows_along_x else var[:, start:stop].T, dtype=float)  # [ix, iy]
         file_attrs = {k: var.getncattr(k) for k in var.ncattrs() if k != "_FillValue"}
         coords = tuple(np.asarray(nc[d][:], dtype=float) if d in nc.variables else None for d in ("x", "y"))
     file_unit = file_attrs.get("units")
@@ -70,14 +74,15 @@ def read_slab(comm, path, *, length=None, unit: str | None = None, periodic: boo
     attrs.update(source_file=path.name, source_sha256=comm.bcast(digest), source_format="netcdf",
                  source_reader="contactlib", height_unit=unit, length=list(lengths), length_from=length_from,
                  periodic=int(periodic), detrend="none", fill="none", filled_points=0)
-    return xr.DataArray(values, dims=("x", "y"), name="height", attrs=attrs,
+    return xr.DataArray(field_values(SOLVER_AXES, values), dims=field_dims(SOLVER_AXES), name="height", attrs=attrs,
                         coords={"x": ("x", coords[0][start:stop], attrs_for("x")),
                                 "y": ("y", coords[1], attrs_for("y"))})
 
 
 def write_slabs(comm, path, *, shape: tuple[int, int], fields: dict, header: xr.Dataset) -> None:
     """Write one NetCDF file: ``header`` (coordinates ``x``, ``y`` of the whole grid, scalars, attributes) by rank
-    0, then ``fields`` (name: ``(rows of this rank, attrs)``) by every rank in turn, at its rows."""
+    0, then ``fields`` (name: ``(rows of x of this rank, indexed [ix, iy], attrs)``) by every rank in turn, each
+    at its block of columns of the file's ``("y", "x")`` variables. ``shape`` is ``(nx, ny)``."""
     import netCDF4
 
     rank, size = comm.Get_rank(), comm.Get_size()
@@ -87,7 +92,7 @@ def write_slabs(comm, path, *, shape: tuple[int, int], fields: dict, header: xr.
             nc.createDimension("x", shape[0])
             nc.createDimension("y", shape[1])
             for name, (_, attrs) in fields.items():  # defined first: the serial files list the fields first
-                var = nc.createVariable(name, "f8", ("x", "y"), fill_value=np.nan)
+                var = nc.createVariable(name, "f8", field_dims(SOLVER_AXES), fill_value=np.nan)
                 var.setncatts(attrs)
         header.to_netcdf(tmp, mode="a")
     start, _ = Slabs(shape[0], size).bounds(rank)
@@ -96,7 +101,7 @@ def write_slabs(comm, path, *, shape: tuple[int, int], fields: dict, header: xr.
         if turn == rank:
             with netCDF4.Dataset(tmp, "a") as nc:
                 for name, (values, _) in fields.items():
-                    nc[name][start: start + values.shape[0], :] = values
+                    nc[name][:, start: start + values.shape[0]] = field_values(SOLVER_AXES, values)
     comm.Barrier()
     if rank == 0:
         os.replace(tmp, path)  # never leave a partial file under the final name

@@ -7,7 +7,7 @@ from collections.abc import Callable
 
 import numpy as np
 
-from ..core.inputs import check_iterations, check_loads, check_tolerance, lengths_of, round_off_floor
+from ..core.inputs import check_iterations, check_loads, check_tolerance, in_solver_axes, lengths_of, round_off_floor
 from ..model.materials import contact_modulus
 from .ccg import LocalState, solve_polonsky_keer
 from .checks import verify_state
@@ -80,7 +80,7 @@ def solve(heights, *, comm, E: float, nu: float, length=None, periodic: bool = T
             raise ValueError(f"length={length!r} contradicts the surface's length={spec.get('length', 1.0)!r}")
         heights = self_affine_slab(comm, **spec)
         length = spec.get("length", 1.0)
-    local = np.ascontiguousarray(heights, dtype=float)
+    local = np.ascontiguousarray(in_solver_axes(heights), dtype=float)  # rows of x: a DataArray's by name
     if local.ndim != 2:
         raise ValueError(f"heights must be this rank's rows of a 2D surface, got {local.ndim} dimensions")
     if length is None:

@@ -18,7 +18,7 @@ import xarray as xr
 from ..model.adhesion import Adhesion, scene_attrs
 from .. import resolution
 from ..core.inputs import number
-from ..core.labels import attrs_for
+from ..core.labels import attrs_for, field_variable
 from ..solvers.adhesive.cohesive import MAX_NEWTON, solve_cohesive
 from ..solvers.adhesive.cohesive_law import grid_law
 from ..solvers.adhesive.energy import EnergyFamily, check_symmetric, energy_family, growth_order
@@ -236,7 +236,7 @@ def label(ds: xr.Dataset, state: AdhesiveState, adhesion: Adhesion, setup, *, le
         interacting = state.in_contact
     size = state.pressure.size
     ds.update({  # one merge: each assignment of a variable aligns the whole Dataset (about 1.5 ms at 256^2)
-        "adhesive_pressure": (tuple(ds["pressure"].dims), np.minimum(state.pressure, 0.0), a("adhesive_pressure")),
+        "adhesive_pressure": field_variable(setup.dims, np.minimum(state.pressure, 0.0), a("adhesive_pressure")),
         "contact_area": ((), float(np.count_nonzero(state.in_contact)) / size,
                          {**a("contact_area"), "long_name": "repulsive (closed) contact area fraction"}),
         "interaction_area": ((), float(np.count_nonzero(interacting)) / size, a("interaction_area")),

@@ -55,7 +55,9 @@ def solve(
     ----------
     heights : xarray.DataArray or ndarray
         Rigid surface heights [length], 1D (plane strain, per unit width) or 2D. Higher points
-        touch first. A DataArray's coordinates give the physical size; an ndarray needs ``length``.
+        touch first. A DataArray's coordinates give the physical size, and its ``x`` and ``y`` dimensions are read
+        by name (either order); an ndarray needs ``length`` and is indexed ``[ix, iy]`` (rows along x; a
+        DataArray surface's is ``surface.transpose("x", "y").values``).
     E, nu : float
         Young's modulus [pressure] and Poisson ratio of the body, ``E > 0``, ``-1 < nu <= 0.5``: the
         shorthand for ``material=contactlib.Elastic(E, nu)``.
@@ -98,8 +100,8 @@ def solve(
         Window size [length], one number or one per axis: required for bare-array heights (there is no
         default window; ``ValueError`` naming ``length`` without it); for a DataArray it may only repeat the
         window its coordinates give.
-    initial_pressure : ndarray, optional
-        Warm start for ``method="cg"``.
+    initial_pressure : xarray.DataArray or ndarray, optional
+        Warm start for ``method="cg"``: a solve's ``pressure`` (read by name), or an ndarray indexed ``[ix, iy]``.
     length_unit, pressure_unit : str
         udunits strings written to the output's ``units`` attributes.
     target_error : float, optional
@@ -151,7 +153,8 @@ def solve(
     Returns
     -------
     xarray.Dataset
-        ``pressure``, ``gap``, ``displacement`` fields and scalars ``contact_area``,
+        ``pressure``, ``gap``, ``displacement`` fields (2D: on dims ``("y", "x")``, so that ``.plot()`` draws x
+        horizontally; select by name, ``.sel(x=..., y=...)``) and scalars ``contact_area``,
         ``mean_pressure``, ``penetration``, ``mean_gap``, ``iterations``, ``residual``; non-periodic, the load as
         a force and the contact's size (:func:`contactlib.core.labels.window_variables`): ``normal_force``
         (``mean_pressure`` times the window area) and ``contact_radius`` (``sqrt(A / pi)``), or on a profile

@@ -30,9 +30,9 @@ from ..analysis.friction import interlocking_friction
 from ..analysis.viscoelastic import traction_power
 from ..model.bodies import BodyModel, KernelCache, body_model
 from ..invariants import verify_solve
-from ..core.inputs import (EDGE_TENSION, check_below_full_contact, check_loads, edge_tension, real_values,
-    round_off_floor, touches_edge)
-from ..core.labels import attrs_for, to_dataset, window_variables
+from ..core.inputs import (EDGE_TENSION, check_below_full_contact, check_loads, edge_tension, round_off_floor,
+    solver_values, touches_edge)
+from ..core.labels import attrs_for, field_variable, to_dataset, window_variables
 from ..model.materials import Viscoelastic, contact_modulus
 from .scene import Scene, scene_of
 from ..solvers import ContactState
@@ -104,8 +104,8 @@ class Problem:
         ----------
         mean_pressure, penetration : float, optional
             The load (one of them, or ``contact_area``).
-        initial_pressure : ndarray, optional
-            Warm start.
+        initial_pressure : xarray.DataArray or ndarray, optional
+            Warm start: a solve's ``pressure`` (read by name) or a bare array indexed ``[ix, iy]``.
         contact_area : float, optional
             Target contact area fraction in (0, 1), instead of a load.
 
@@ -153,7 +153,7 @@ class Problem:
         if initial_pressure is not None:
             if scene.method != "cg":
                 raise ValueError(f"initial_pressure: a warm start is for method='cg', got method={scene.method!r}")
-            warm = real_values(initial_pressure, "initial_pressure")
+            warm = solver_values(initial_pressure, "initial_pressure")  # a DataArray by name, an ndarray [ix, iy]
             if warm.shape != scene.values.shape:
                 raise ValueError(f"initial_pressure has shape {warm.shape}, heights {scene.values.shape}")
             if not np.all(np.isfinite(warm)):
@@ -241,15 +241,15 @@ class Problem:
         variables = {}
         for axis, traction in zip(axes, tractions):
             name = f"tangential_traction_{axis}"
-            variables[name] = xr.Variable(self.dims, traction, attrs_for(name, length=length_unit,
-                                                                        pressure=pressure_unit))
+            variables[name] = field_variable(self.dims, traction, attrs_for(name, length=length_unit,
+                                                                           pressure=pressure_unit))
         if self.body.tensor is not None and mu > 0:
             spectra = self.body.tensor.tangential_displacement(self.grid, fft.rfftn(state.pressure),
                                                                [fft.rfftn(t) for t in tractions])
             for axis, spectrum in zip(axes, spectra):
                 name = f"tangential_displacement_{axis}"
-                variables[name] = xr.Variable(self.dims, fft.irfftn(spectrum, self.grid.shape),
-                                              attrs_for(name, length=length_unit, pressure=pressure_unit))
+                variables[name] = field_variable(self.dims, fft.irfftn(spectrum, self.grid.shape),
+                                                 attrs_for(name, length=length_unit, pressure=pressure_unit))
         # from the deformed surface: exactly zero on a decoupled elastic body, the dissipated power when sliding
         mu_a = interlocking_friction(state.pressure, state.displacement, lengths=self.grid.lengths,
                                      direction=direction, periodic=self.operator.periodic)
@@ -325,7 +325,8 @@ def prepare(heights, *, E: float | None = None, nu: float | None = None, materia
     Parameters
     ----------
     heights : xarray.DataArray or ndarray
-        Rigid surface heights [length], as :func:`contactlib.solve`.
+        Rigid surface heights [length], as :func:`contactlib.solve`: a DataArray's ``x`` and ``y`` read by name, a
+        bare array indexed ``[ix, iy]`` (``surface.transpose("x", "y").values``) with ``length``.
     E, nu : float
         Young's modulus [pressure] and Poisson ratio (or ``material``).
     material : contactlib.Elastic or contactlib.Viscoelastic, optional

@@ -35,7 +35,8 @@ class Scene:
     """The rigid surface's heights [length] on :attr:`grid` (C-contiguous floats)."""
     grid: Grid
     dims: tuple
-    """Dimension names of the fields (``("x",)`` or ``("x", "y")``)."""
+    """Dimension names of the solver's arrays, in their index order (``("x",)`` or ``("x", "y")``: ``[ix, iy]``);
+    the answer labels a surface's fields on ``("y", "x")`` (:func:`contactlib.core.labels.field_dims`)."""
     coords: dict
     """Coordinates of the fields (the heights' own, or the grid's)."""
     material: Elastic | Viscoelastic

@@ -26,6 +26,7 @@ from collections.abc import Sequence
 import numpy as np
 import xarray as xr
 
+from ..core.inputs import solver_values
 from .problem import prepare
 from ..resolution import recording, report, worst
 from ..solvers.recycle import RecycledSpace
@@ -159,7 +160,7 @@ def solve_speeds(heights, sliding_velocities, *, recycle: bool | RecycledSpace =
                 problem = problem.at_speed(velocity)
             ds = problem.solve(**load, initial_pressure=start)
             speeds.append(speed)
-            pressures.append(ds.pressure.values)
+            pressures.append(solver_values(ds.pressure, "pressure"))  # [ix, iy], as the warm start reads a bare array
             out.append(ds)
     report([worst(seen)] if seen else [], where="solve_speeds", guarantee=kwargs.get("target_error") is not None)
     return out

@@ -38,7 +38,7 @@ from ..model.hereditary import PronyHistory
 from ..kernels.nyquist import even_on_nyquist
 from ..invariants import check_relaxed_limit, contact_checks, relaxed_hold, step_invariants, verify, with_dataset
 from ..core.inputs import check_whole, load_history, real_values, time_values, touches_edge
-from ..core.labels import attrs_for
+from ..core.labels import attrs_for, field_variable
 from ..model.materials import Elastic, material_of
 from ..solvers.state import height_scale
 from ..solvers.symmetric.choice import constrained_solve
@@ -114,7 +114,8 @@ def solve_transient(
     Parameters
     ----------
     heights : xarray.DataArray or ndarray
-        Rigid surface heights [length] as :func:`contactlib.solve` takes them (an ndarray needs ``length``).
+        Rigid surface heights [length] as :func:`contactlib.solve` takes them (an ndarray is indexed ``[ix, iy]``
+        and needs ``length``). The saved fields are on ``("saved_time", "y", "x")``.
     times : sequence of float
         Strictly increasing instants [time]. The body is at rest before ``times[0]``; the load given there
         is applied instantaneously (the glassy response, ``E_inf``), or, with ``initial="relaxed"``, has
@@ -411,13 +412,13 @@ class StepRecord:
         if self.moving:
             for i, axis in enumerate(stepper.axes):
                 ds[f"position_{axis}"] = ("time", np.asarray(self.positions[:n, i], dtype=float), a(f"position_{axis}"))
-        dims = ("saved_time",) + stepper.dims
+        dims = ("saved_time",) + stepper.dims  # labelled by field_variable: a surface's fields on (y, x)
         ds = ds.assign_coords(saved_time=("saved_time", np.array(self.field_times),
                                           {"units": time_unit, "long_name": "time of the saved fields"}))
         ds = ds.assign_coords({d: (d, c, a(d)) for d, c in zip(stepper.dims, stepper.grid.coordinates())})
         for name, values in self.fields.items():
             data = np.stack(values) if values else np.zeros((0,) + stepper.grid.shape)
-            ds[name] = (dims, data, a(name))
+            ds[name] = field_variable(dims, data, a(name))
         material = stepper.material
         ds.attrs.update({
             "Conventions": "CF-1.10", "contactlib_version": __version__, "status": status, "steps": n,

@@ -38,7 +38,7 @@ def area_load_point(*, hurst: float, n: int, seed: int, reduced_pressure: float,
     area = float(out.contact_area)
     return {"contact_area": area, "mean_pressure": float(out.mean_pressure), "penetration": float(out.penetration),
             "iterations": float(out.iterations), "residual": float(out.residual), "rms_slope": slope,
-            "kappa": area / reduced_pressure, "_warm_start": out.pressure.values}
+            "kappa": area / reduced_pressure, "_warm_start": out.pressure}
 
 
 def area_load_shapes(grid: dict, constants: dict) -> list[tuple[int, ...]]:

@@ -39,7 +39,7 @@ def viscoelastic_layer_point(*, zeta: float, friction: float, seed: int, n: int,
     return {"friction_coefficient_interlocking": mu_a, "interlocking_over_slope": mu_a / measures["rms_slope"],
             "contact_area": float(out.contact_area), **measures, "viscoelastic_model": model_flag(out),
             "iterations": float(out.iterations), "outer_iterations": float(out.get("outer_iterations", 0)),
-            "residual": float(out.residual), "_warm_start": out.pressure.values}
+            "residual": float(out.residual), "_warm_start": out.pressure}
 
 
 # each speed solved cold: walking the speeds with warm starts cost more (2048 points, 14 speeds: 1.3 s cold

@@ -34,7 +34,7 @@ def friction_speed_point(*, zeta: float, glassy_ratio: float, seed: int, n: int,
             "contact_area": float(out.contact_area), "mean_pressure": float(out.mean_pressure),
             "dissipated_power": float(out.dissipated_power), "rms_slope": slope, "viscoelastic_model": model_flag(out),
             "iterations": float(out.iterations), "outer_iterations": float(out.get("outer_iterations", 0)),
-            "residual": float(out.residual), "_warm_start": out.pressure.values}
+            "residual": float(out.residual), "_warm_start": out.pressure}
 
 
 def speed_shapes(grid: dict, constants: dict) -> list[tuple[int, ...]]:

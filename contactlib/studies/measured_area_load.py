@@ -11,6 +11,7 @@ import xarray as xr
 
 from .. import analysis
 from ..analysis.friction import directional_slope
+from ..core.inputs import in_solver_axes
 from ..problems.contact import solve
 from ..model.materials import contact_modulus
 
@@ -41,6 +42,7 @@ def rms_gradient(heights: xr.DataArray) -> float:
     spectrum would count the jump across the window's edges as slope)."""
     if heights.attrs["periodic"]:
         return analysis.rms_slope(heights)
+    heights = in_solver_axes(heights)  # x and y by name: the angles below are from x
     lengths = tuple(float(heights[d][1] - heights[d][0]) * heights.sizes[d] for d in heights.dims)
     squares = sum(directional_slope(heights.values, lengths=lengths, direction=angle, periodic=False) ** 2
                   for angle in (0.0, np.pi / 2)[: heights.ndim])
@@ -59,7 +61,7 @@ def measured_area_load_point(*, surface_file: str, reduced_pressure: float, E: f
     area = float(out.contact_area)
     return {"contact_area": area, "mean_pressure": float(out.mean_pressure), "penetration": float(out.penetration),
             "iterations": float(out.iterations), "residual": float(out.residual), "rms_slope": slope,
-            "kappa": area / reduced_pressure, "_warm_start": out.pressure.values}
+            "kappa": area / reduced_pressure, "_warm_start": out.pressure}
 
 
 def measured_area_load_shapes(grid: dict, constants: dict) -> list[tuple[int, ...]]:

@@ -108,7 +108,7 @@ def compare_methods(*, count: int, coverage: float, seed: int, nodes_per_radius:
     table = two_scale.asperity_table(field)
     approach = float(field.max()) - (1 - APPROACH) * float(np.mean(table.summit_height))
     reference = solve(field, E=E, nu=nu, penetration=approach, tol=tol)
-    reference_forces = two_scale.asperity_forces(reference.pressure.values, table)
+    reference_forces = two_scale.asperity_forces(reference.pressure, table)
     solvers = {
         "macro": lambda: two_scale.solve(field, E=E, nu=nu, penetration=approach, scale="macro", fields=False),
         "two_scale": lambda: two_scale.solve(field, E=E, nu=nu, penetration=approach, tol=two_scale_tol,
@@ -134,7 +134,7 @@ def compare_methods(*, count: int, coverage: float, seed: int, nodes_per_radius:
         "macro": (outputs["macro"].force.values, float(outputs["macro"].contact_area), macro_fields.pressure.values),
         "two_scale": (outputs["two_scale"].force.values, float(outputs["two_scale"].contact_area),
                       outputs["two_scale"].pressure.values),
-        "full": (two_scale.asperity_forces(outputs["full"].pressure.values, table),
+        "full": (two_scale.asperity_forces(outputs["full"].pressure, table),
                  float(outputs["full"].contact_area), outputs["full"].pressure.values),
     }
     for name in METHODS:

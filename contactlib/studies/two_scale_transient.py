@@ -69,7 +69,7 @@ def creep_point(*, count: int, coverage: float, glassy_ratio: float, seed: int, 
     times = np.linspace(0.0, end_time, int(steps) + 1)
     reference = full_transient(field, material=m, times=times, mean_pressure=load, tol=tol, max_iter=max_iter,
                                save_fields=True)
-    ref_forces = np.array([two_scale.asperity_forces(p, table) for p in reference.pressure.values])
+    ref_forces = np.array([two_scale.asperity_forces(p, table) for p in reference.pressure])
     runs = {
         "full": lambda t: full_transient(field, material=m, times=t, mean_pressure=load, tol=full_tol,
                                          max_iter=max_iter, save_fields=True),
@@ -83,7 +83,7 @@ def creep_point(*, count: int, coverage: float, glassy_ratio: float, seed: int, 
         start = time.perf_counter()
         out[name] = run(times)
         wall[name] = time.perf_counter() - start
-    forces = {"full": np.array([two_scale.asperity_forces(p, table) for p in out["full"].pressure.values]),
+    forces = {"full": np.array([two_scale.asperity_forces(p, table) for p in out["full"].pressure]),
               "two_scale": out["two_scale"].force.values, "macro": out["macro"].force.values}
 
     def series(values, name):

@@ -11,7 +11,7 @@ import numpy as np
 import xarray as xr
 
 from ..core.grid import Grid
-from ..core.labels import attrs_for
+from ..core.labels import attrs_for, field_dims, field_values
 from . import preparation, readers
 
 # attrs that describe one reading; a file written from an earlier reading carries them, and they are renewed
@@ -60,7 +60,8 @@ def read(path, *, length=None, unit: str | None = None, periodic: bool | None = 
     Returns
     -------
     xarray.DataArray
-        ``height`` [m] with dims ``("x", "y")`` or ``("x",)``, coordinates [m] (``i * length / n``, or
+        ``height`` [m] with dims ``("y", "x")`` or ``("x",)`` (a ``.npy`` array is indexed ``[ix, iy]``, a
+        text matrix has one row per y, a NetCDF ``height`` is read by its dims' names), coordinates [m] (``i * length / n``, or
         the file's own uniform positions), and attrs: ``source_file`` (name), ``source_sha256``,
         ``source_format``, ``source_reader``, ``height_unit`` (the file's), ``length`` [m] per axis,
         ``length_from`` (file or argument), ``periodic``, ``detrend`` (+ what it removed), ``fill``,
@@ -119,7 +120,7 @@ def read(path, *, length=None, unit: str | None = None, periodic: bool | None = 
     attrs.update(source_file=path.name, source_sha256=file_sha256(path), source_format=raw.format,
                  source_reader=raw.reader, height_unit=unit, length=list(lengths), length_from=length_from,
                  periodic=int(periodic), **trend, fill=fill or "none", filled_points=filled)
-    return xr.DataArray(values, dims=dims, name="height", attrs=attrs,
+    return xr.DataArray(field_values(dims, values), dims=field_dims(dims), name="height", attrs=attrs,
                         coords={d: (d, c, attrs_for(d)) for d, c in zip(dims, coords)})
 
 

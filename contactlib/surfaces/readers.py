@@ -80,8 +80,10 @@ def _read_netcdf(path: Path, explicit: bool) -> RawTopography | None:
                 raise ValueError(f"{path}: NetCDF without a 'height' variable (has {sorted(ds.data_vars)})")
             return None  # another NetCDF layout: SurfaceTopography's, if installed
         height = ds["height"].load()
-    if height.dims not in (("x",), ("x", "y")):
-        raise ValueError(f"{path}: 'height' has dims {height.dims}; contactlib reads ('x',) or ('x', 'y')")
+    if height.dims not in (("x",), ("x", "y"), ("y", "x")):
+        raise ValueError(f"{path}: 'height' has dims {height.dims}; contactlib reads ('x',), ('y', 'x') or "
+                         "('x', 'y')")
+    height = height.transpose(*sorted(height.dims))  # by name: rows along x, as every reader gives them
     unit = height.attrs.get("units")
     coords = None
     if all(d in height.coords for d in height.dims):

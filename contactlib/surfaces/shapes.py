@@ -11,7 +11,7 @@ import xarray as xr
 from .._version import __version__
 from ..core.grid import Grid
 from ..core.inputs import check_whole, number, real_values
-from ..core.labels import attrs_for
+from ..core.labels import attrs_for, field_dims, field_values
 
 
 def _as_dataarray(values, grid: Grid, length_unit: str, **attrs) -> xr.DataArray:
@@ -19,7 +19,7 @@ def _as_dataarray(values, grid: Grid, length_unit: str, **attrs) -> xr.DataArray
     coords = {d: (d, c, attrs_for(d, length=length_unit)) for d, c in zip(dims, grid.coordinates())}
     a = attrs_for("height", length=length_unit)
     a.update(attrs, contactlib_version=__version__)
-    return xr.DataArray(values, dims=dims, coords=coords, name="height", attrs=a)
+    return xr.DataArray(field_values(dims, values), dims=field_dims(dims), coords=coords, name="height", attrs=a)
 
 
 def _grid(n, length, dim) -> Grid:
@@ -64,7 +64,7 @@ def wavy(n: int, *, length: float = 1.0, amplitude: float, wavelengths: int = 1,
     Returns
     -------
     xarray.DataArray
-        ``height`` [length] on ``("x", "y")`` (2D) or ``("x",)`` (1D), coordinates from 0, with ``units`` and
+        ``height`` [length] on ``("y", "x")`` (2D) or ``("x",)`` (1D), coordinates from 0, with ``units`` and
         ``long_name``.
 
     Raises
@@ -115,7 +115,7 @@ def paraboloid(n: int, *, length: float = 1.0, radius: float, dim: int = 2, leng
     Returns
     -------
     xarray.DataArray
-        ``height`` [length] on ``("x", "y")`` (2D) or ``("x",)`` (1D), coordinates from 0, with ``units`` and
+        ``height`` [length] on ``("y", "x")`` (2D) or ``("x",)`` (1D), coordinates from 0, with ``units`` and
         ``long_name``.
 
     Raises
@@ -192,7 +192,7 @@ def spheres(n: int, *, length: float = 1.0, radius, summit_height=None, centers=
     Returns
     -------
     xarray.DataArray
-        ``height`` [length] on ``("x", "y")`` (2D) or ``("x",)`` (1D), coordinates from 0, with ``units`` and
+        ``height`` [length] on ``("y", "x")`` (2D) or ``("x",)`` (1D), coordinates from 0, with ``units`` and
         ``long_name``. Its ``attrs`` hold the asperity table.
 
     Raises

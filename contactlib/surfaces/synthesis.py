@@ -11,7 +11,7 @@ from .._version import __version__
 from ..analysis import statistics
 from ..core.grid import Grid
 from ..core.inputs import check_whole, number
-from ..core.labels import attrs_for
+from ..core.labels import attrs_for, field_dims, field_values
 from .spectra import self_affine_psd, stretched_wavenumber
 
 
@@ -67,7 +67,8 @@ def self_affine(
 
     Returns
     -------
-    xarray.DataArray ``height`` with dims ``("x", "y")`` or ``("x",)``.
+    xarray.DataArray ``height`` with dims ``("y", "x")`` (x last: ``.plot()`` draws it horizontally) or ``("x",)``;
+    ``.transpose("x", "y").values`` is the bare array indexed ``[ix, iy]``.
 
     Raises
     ------
@@ -121,7 +122,7 @@ def self_affine(
                  synthesis=synthesis,
                  normalised_by="rms_height" if rms_height is not None else "rms_slope", target=float(target),
                  contactlib_version=__version__)
-    return xr.DataArray(heights, dims=dims, coords=coords, name="height", attrs=attrs)
+    return xr.DataArray(field_values(dims, heights), dims=field_dims(dims), coords=coords, name="height", attrs=attrs)
 
 
 def check_spectrum(n: int, *, hurst, q_low, q_roll, q_cutoff, rms_height, rms_slope, anisotropy, synthesis, angle,

@@ -17,7 +17,7 @@ import xarray as xr
 
 from ..core._numba import jit
 from ..core.grid import Grid
-from ..core.inputs import real_values
+from ..core.inputs import in_solver_axes, real_values, solver_values
 
 NEIGHBOUR_SPACINGS = 2.5
 """The Ewald sum's real-space reach in mean spacings ``L / sqrt(N)`` (:data:`.interaction.EWALD_NEIGHBOURS`):
@@ -194,7 +194,7 @@ def asperity_table(asperities, *, length: float | None = None, periodic: bool | 
     if isinstance(asperities, xr.DataArray):
         if asperities.ndim != 2:
             raise ValueError(f"asperities: the two-scale method needs a 2D surface, got {asperities.ndim}D")
-        values, grid, highest = _heights_of(asperities)
+        values, grid, highest = _heights_of(in_solver_axes(asperities))  # by name: [ix, iy]
         if abs(grid.lengths[0] - grid.lengths[1]) > 1e-12 * grid.lengths[0] or grid.shape[0] != grid.shape[1]:
             raise ValueError(f"asperities: the window must be square with a square grid, got {grid.shape} "
                              f"points over {grid.lengths}")
@@ -307,8 +307,9 @@ def asperity_forces(pressure: np.ndarray, table: AsperityTable) -> np.ndarray:
 
     Parameters
     ----------
-    pressure : ndarray
-        Pressure field on the table's grid [pressure].
+    pressure : xarray.DataArray or ndarray
+        Pressure field on the table's grid [pressure]: a DataArray's x and y read by name, an ndarray indexed
+        ``[ix, iy]``.
     table : AsperityTable
         The asperities, with their grid.
 
@@ -324,7 +325,7 @@ def asperity_forces(pressure: np.ndarray, table: AsperityTable) -> np.ndarray:
     """
     if table.grid is None:
         raise ValueError("asperities: the table has no grid to read a pressure field on")
-    pressure = np.asarray(pressure, dtype=float)
+    pressure = solver_values(pressure, "pressure")  # a DataArray's x and y by name: [ix, iy], as the table's grid
     if pressure.shape != table.grid.shape:
         raise ValueError(f"pressure has shape {pressure.shape}, the grid {table.grid.shape}")
     n, step = table.grid.shape[0], table.grid.spacing[0]

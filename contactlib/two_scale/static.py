@@ -12,7 +12,7 @@ from .._version import __version__
 from ..errors import ConvergenceError
 from ..invariants import verify_two_scale
 from ..core.inputs import number
-from ..core.labels import attrs_for, dataset
+from ..core.labels import SOLVER_AXES, attrs_for, dataset, field_dims, field_values
 from ..model.materials import contact_modulus
 from ..model.operators import Compliance
 from ..resolution import guard_asperities
@@ -359,7 +359,7 @@ def _label(table: AsperityTable, macro: MacroState, micro: MicroState | None, pa
         coords["x"] = ("x", xs[0], a("x"))
         coords["y"] = ("y", xs[1], a("y"))
         for name, value in (("pressure", pressure), ("displacement", displacement), ("gap", gap)):
-            data[name] = (("x", "y"), value, a(name))
+            data[name] = (field_dims(SOLVER_AXES), field_values(SOLVER_AXES, value), a(name))  # [ix, iy] on (y, x)
     attrs = {**params, "converged": params.get("converged", 1), "title": "two-scale asperity contact (seed paper 1)",
              "source": f"contactlib {__version__}, contactlib.two_scale.solve"}
     return dataset(data, coords, attrs)

@@ -7,7 +7,6 @@ import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
 import xarray as xr  # noqa: E402
 
 sm = snakemake  # noqa: F821
@@ -23,13 +22,14 @@ for ax, field, title in ((axes[0], rest, f"at rest (relaxed): contact {float(ds.
     ax.set_title(title, fontsize=9)
     ax.set_aspect("equal")
 # zoom on the patch around the largest pressure of the sliding map
-i, j = np.unravel_index(int(np.argmax(p.values)), p.shape)
+peak = p.argmax(dim=("x", "y"))  # by name: the fields are on (y, x)
+i, j = int(peak["x"]), int(peak["y"])
 half = max(6, p.sizes["x"] // 16)
 window = p.isel(x=slice(max(0, i - half), i + half), y=slice(max(0, j - half), j + half))
 window.plot.imshow(ax=axes[2], x="x", y="y", cmap="magma", vmin=0, vmax=vmax, cbar_kwargs={"label": "pressure [kPa]"})
 rest_window = rest.isel(x=slice(max(0, i - half), i + half), y=slice(max(0, j - half), j + half))
-axes[2].contour(rest_window.x, rest_window.y, (rest_window > 0).T.astype(float), levels=[0.5], colors="c",
-                linewidths=1)
+axes[2].contour(rest_window.x, rest_window.y, (rest_window > 0).transpose("y", "x").astype(float), levels=[0.5],
+                colors="c", linewidths=1)  # matplotlib's Z: one row per y
 axes[2].annotate("", xy=(0.95, 0.05), xytext=(0.75, 0.05), xycoords="axes fraction",
                  arrowprops={"arrowstyle": "->", "color": "w"})
 axes[2].set_title("zoom: sliding patch; cyan: outline at rest; arrow: V", fontsize=9)

@@ -14,6 +14,6 @@ spec = dict(sm.params.example)
 unit = spec.pop("unit")
 length = spec.pop("length")  # [unit]
 h = surfaces.self_affine(spec.pop("n"), length=length * METRES_PER[unit], **spec)
-np.savetxt(sm.output[0], h.values.T / METRES_PER[unit], fmt="%.17g",
+np.savetxt(sm.output[0], h.transpose("y", "x").values / METRES_PER[unit], fmt="%.17g",
            header=f"contactlib.surfaces.self_affine {spec}, heights in {unit}, window {length} {unit}, periodic")
 print(f"wrote {sm.output[0]}: {h.shape} heights in {unit}", file=sys.stderr)
