@@ -43,7 +43,7 @@ at the law itself stalls: after the first frozen-traction attempt the solve goes
 in the range, from that attempt's best state. Newton moves the contact edge where the rounds creep, but near the
 answer its steps can flip the edge's active set back and forth (no halving then helps); it stops there, and the
 frozen traction, whose rounds do not flip, finishes from its best state (issue 38's sphere, non-periodic, lambda
-3.5-10: 7.5-8.6x the plain solve on 256^2 against 18-29x before; 14x and 17x at lambda 5 and 10 on 512^2, where
+3.5-10: 6.4-7.9x the plain solve on 256^2 against 18-29x before; 14x and 19x at lambda 5 and 10 on 512^2, where
 the parent took 24x and raised after 88 s; ``benchmarks/bench_maugis.py``).
 
 A solve that does not meet ``tol`` comes back ``converged=False``. The residual is scale-free: the mean
@@ -94,7 +94,7 @@ NARROW_ZONE = 4.0
 frozen-traction attempt straight through Newton's continuation in the range (:data:`RANGES`), without the
 frozen-traction continuation or Newton at the law itself first: on issue 38's sphere (non-periodic, 256^2 over a
 quarter of its radius, approach 0.002) at lambda 3.5-10 (3.5-1.7 spacings, the zone floored below 1.7) that took
-7.5-8.6x the plain solve against 18-29x (``benchmarks/bench_maugis.py``)."""
+6.4-7.9x the plain solve against 18-29x (``benchmarks/bench_maugis.py``)."""
 
 RANGES = (8.0, 4.0, 2.0, 1.0)
 """Range multipliers of the first continuation a stalled solve restarts with (from its own start)."""

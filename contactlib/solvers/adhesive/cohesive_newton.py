@@ -54,8 +54,8 @@ LONG_RESTART = 120
 FORCING = 1e-2
 """Relative tolerance of each Newton step's GMRES (the inexact Newton forcing term): a step need only cut the
 residual's linear model a hundredfold, since the next step measures the true residual again. The parent solved each
-step to ``min(1e-4, 0.1 r)`` (``r`` the scale-free residual, so 1e-7 near the answer): on issue 38's Maugis spheres on
-256^2 at lambda 3.5-10 that took 2-3 times the GMRES iterations for the same Newton steps."""
+step to ``min(1e-4, 0.1 r)`` (``r`` the scale-free residual, so 1e-7 near the answer): issue 38's Maugis spheres on
+256^2 at lambda 3.5-10 took 1.2-2x as long with it (the whole solve, one process each)."""
 
 
 def restart_for(points: int) -> int:
