@@ -216,10 +216,7 @@ def hard(n: int, lams, repeat: int, penetration: float = 0.002) -> None:
         sigma0 = lam / 2 * (math.pi * w * K**2 / R) ** (1 / 3)
         law = contactlib.Adhesion(work=w, range=w / sigma0, model="maugis")
         wall, cpu, ds = timed(adhesion=law)
-        target = penetration / (math.pi**2 * w**2 * R / K**2) ** (1 / 3)
-        A = brentq(lambda a: ref.maugis_load_penetration(a, lam)[1][0] - target, 0.3, 6.0, xtol=1e-13)
-        force = ref.maugis_load_penetration(A, lam)[0][0] * math.pi * w * R
-        radius = A * (math.pi * w * R**2 / K) ** (1 / 3)
+        force, radius = ref.maugis_at_penetration(penetration, lam=lam, radius=R, E_star=e_star, work=w)
         got = float(ds.mean_pressure) * length**2
         a = ref.apex_disc_radius(h.values, int(round(float(ds.contact_area) * h.size)), radius=R)
         print(f"n {n} lambda {lam:g} (zone {ds.attrs['process_zone_elements']:.2f} el): {wall:.2f} s wall "

@@ -21,26 +21,17 @@ import time
 import warnings
 
 import numpy as np
-from scipy.optimize import brentq
-
 import contactlib
 from contactlib.reference import adhesive as ref
 
 E, NU, RADIUS, WORK, LENGTH, PENETRATION = 1.0, 0.5, 1.0, 1e-4, 0.25, 0.002
-K = 4 * E / (1 - NU**2) / 3
+E_STAR = E / (1 - NU**2)
+K = 4 * E_STAR / 3
 
 
 def maugis_law(lam: float) -> contactlib.Adhesion:
     peak = lam / 2 * (math.pi * WORK * K**2 / RADIUS) ** (1 / 3)
     return contactlib.Adhesion(work=WORK, range=WORK / peak, model="maugis")
-
-
-def maugis(lam: float, penetration: float) -> tuple[float, float]:
-    """Maugis' force and contact radius at the approach ``penetration`` (the branch of the largest contact)."""
-    target = penetration / (math.pi**2 * WORK**2 * RADIUS / K**2) ** (1 / 3)
-    A = brentq(lambda a: ref.maugis_load_penetration(a, lam)[1][0] - target, 0.3, 6.0, xtol=1e-13)
-    return (ref.maugis_load_penetration(A, lam)[0][0] * math.pi * WORK * RADIUS,
-            A * (math.pi * WORK * RADIUS**2 / K) ** (1 / 3))
 
 
 def interleaved(first, second, repeats: int) -> tuple[float, float, object]:
@@ -87,7 +78,7 @@ def main(argv=None):
                 print(f"{n:>5} {lam:>6.1f} {t_plain:>8.3f} {t_adh:>10.2f} {t_adh / t_plain:>6.1f} "
                       f"{'raised':>9} {'':>10} {str(out)[:80]}")
                 continue
-            force, radius = maugis(lam, PENETRATION)
+            force, radius = ref.maugis_at_penetration(PENETRATION, lam=lam, radius=RADIUS, E_star=E_STAR, work=WORK)
             got_radius = ref.apex_disc_radius(h.values, int(round(float(out.contact_area) * h.size)), radius=RADIUS)
             print(f"{n:>5} {lam:>6.1f} {t_plain:>8.3f} {t_adh:>10.2f} {t_adh / t_plain:>6.1f} "
                   f"{float(out.normal_force) / force - 1:>+9.4f} {got_radius / radius - 1:>+10.4f} "

@@ -649,3 +649,18 @@ def test_cohesive_sphere_does_not_depend_on_the_window(model, range_, penetratio
     (narrow, closed), (wide, wide_closed) = out
     assert narrow < -3e-4  # adhesive: a tensile force
     assert wide == pytest.approx(narrow, rel=1e-2) and wide_closed == closed
+
+
+def test_maugis_at_penetration_inverts_the_closed_form():
+    """:func:`contactlib.reference.adhesive.maugis_at_penetration` returns the contact radius whose approach (eq. 6.19)
+    is the one asked, and that radius's load (eq. 6.17), in physical units: a dimensionless radius of 2 at lambda 3
+    round-trips to 1e-10."""
+    from contactlib.reference.adhesive import maugis_at_penetration, maugis_load_penetration
+
+    R, E_star, w, lam, A = 0.5, 1.3, 2e-4, 3.0, 2.0
+    K = 4 * E_star / 3
+    (P,), (D,) = maugis_load_penetration(A, lam)
+    force, radius = maugis_at_penetration(D * (np.pi**2 * w**2 * R / K**2) ** (1 / 3), lam=lam, radius=R,
+                                          E_star=E_star, work=w)
+    assert radius == pytest.approx(A * (np.pi * w * R**2 / K) ** (1 / 3), rel=1e-10)
+    assert force == pytest.approx(P * np.pi * w * R, rel=1e-10)

@@ -116,14 +116,10 @@ def hard_law(radius, lam):
 
 def maugis_mean_pressure(length, radius, lam, penetration):
     """Maugis' mean pressure over the window at the approach ``penetration``, on the branch of the largest contact."""
-    from scipy.optimize import brentq
+    from contactlib.reference.adhesive import maugis_at_penetration
 
-    from contactlib.reference.adhesive import maugis_load_penetration
-
-    K = 4 * E_STAR / 3
-    target = penetration / (np.pi**2 * HARD_WORK**2 * radius / K**2) ** (1 / 3)
-    A = brentq(lambda a: maugis_load_penetration(a, lam)[1][0] - target, 1.0, 5.0, xtol=1e-13)
-    return maugis_load_penetration(A, lam)[0][0] * np.pi * HARD_WORK * radius / length**2
+    force, _ = maugis_at_penetration(penetration, lam=lam, radius=radius, E_star=E_STAR, work=HARD_WORK)
+    return force / length**2
 
 
 def hard_solve(n, length, radius, lam, penetration, **kwargs):

@@ -18,7 +18,6 @@ import warnings
 
 import numpy as np
 import pytest
-from scipy.optimize import brentq
 
 import contactlib
 from contactlib.reference import adhesive as ref
@@ -40,9 +39,7 @@ def law(lam):
 def maugis(lam, penetration):
     """Maugis' force [force] and contact radius [length] at the approach ``penetration`` (the branch of the largest
     contact)."""
-    target = penetration / (math.pi**2 * W**2 * R / K**2) ** (1 / 3)
-    A = brentq(lambda a: ref.maugis_load_penetration(a, lam)[1][0] - target, 0.3, 6.0, xtol=1e-13)
-    return ref.maugis_load_penetration(A, lam)[0][0] * math.pi * W * R, A * (math.pi * W * R**2 / K) ** (1 / 3)
+    return ref.maugis_at_penetration(penetration, lam=lam, radius=R, E_star=E_STAR, work=W)
 
 
 def grid_lambda():

@@ -220,6 +220,36 @@ def maugis_load(contact_radius, *, radius: float, E_star: float, work: float, pe
     return maugis_load_penetration(A, lam)[0] * np.pi * work * radius
 
 
+def maugis_at_penetration(penetration: float, *, lam: float, radius: float, E_star: float,
+                          work: float) -> tuple[float, float]:
+    """The Maugis-Dugdale sphere's load [force] and contact radius [length] at the approach ``penetration`` [length],
+    on the branch of the largest contact (the root of the approach of eq. 6.19 for dimensionless radii in 0.3-6).
+
+    Parameters
+    ----------
+    penetration : float
+        The approach d [length], positive into the body.
+    lam : float
+        Maugis parameter lambda.
+    radius : float
+        Sphere radius R [length].
+    E_star : float
+        Contact modulus E* = E / (1 - nu^2) [pressure].
+    work : float
+        Work of adhesion w [pressure length].
+
+    Returns
+    -------
+    (float, float)
+        The load P [force] (tensile negative) and the contact radius a [length].
+    """
+    K = 4 * E_star / 3
+    target = penetration / (np.pi**2 * work**2 * radius / K**2) ** (1 / 3)
+    A = brentq(lambda a: maugis_load_penetration(a, lam)[1][0] - target, 0.3, 6.0, xtol=1e-13)
+    return (float(maugis_load_penetration(A, lam)[0][0]) * np.pi * work * radius,
+            A * (np.pi * work * radius**2 / K) ** (1 / 3))
+
+
 def maugis_pull_off(lam: float) -> float:
     """Dimensionless pull-off force ``P_c / (pi w R)`` of the Maugis-Dugdale sphere under load control:
     the minimum of the load over the contact radius.
