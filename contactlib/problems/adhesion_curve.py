@@ -149,7 +149,9 @@ def _cohesive_step(setup, adhesion, args, warm, warm_d, *, cold=True):
     """The converged state at ``args``' load or penetration from the warm start ``(warm, warm_d)``, then (``cold``)
     the non-adhesive state, then the open one (a jump lands on either); ``(None, smallest residual)`` if none."""
     closest = math.nan
-    for attempt in (warm, None, np.zeros_like(setup.values)) if cold else (warm,):
+    # without a warm start the first attempt is the cold one: it is not solved twice
+    attempts = ([warm] if warm is not None else []) + ([None, np.zeros_like(setup.values)] if cold else [])
+    for attempt in attempts:
         setup.solver_args = dict(args, initial_pressure=attempt)
         try:
             candidate = adhesive_choice.solve(setup, adhesion, warm_penetration=warm_d if attempt is not None

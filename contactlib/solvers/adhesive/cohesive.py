@@ -250,8 +250,9 @@ def solve_cohesive(
             p, delta = _cold_start(operator, heights, adhesion, mean_pressure, penetration, solve_repulsive)
         if delta is None:
             delta = 0.0
-        result = (None,) * 7 + (False,) if narrow else newton(adhesion, p, delta)
-    if not result[-1]:  # stalled: continuation in the range (8, 4, 2, 1 times), warm-started stage to stage
+        if not narrow:
+            result = newton(adhesion, p, delta)
+    if result is None or not result[-1]:  # stalled: continuation in the range (8, 4, 2, 1 times), stage to stage
         p_c, d_c = p, delta
         for factor in RANGES:
             result = newton(adhesion.replace(range=adhesion.range * factor), p_c, d_c)
