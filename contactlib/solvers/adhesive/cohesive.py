@@ -70,7 +70,7 @@ from ..anderson import Anderson
 from ..symmetric.ccg import solve_polonsky_keer
 from ...model.adhesion import process_zone_length
 from .cohesive_law import grid_law
-from .cohesive_newton import GMRES_ITERATIONS, CohesiveNewton
+from .cohesive_newton import FORCING, GMRES_ITERATIONS, CohesiveNewton
 from .cohesive_rounds import Rounds
 from ..state import ContactState
 
@@ -98,6 +98,17 @@ quarter of its radius, approach 0.002) at lambda 3.5-10 (3.5-1.7 spacings, the z
 
 RANGES = (8.0, 4.0, 2.0, 1.0)
 """Range multipliers of the first continuation a stalled solve restarts with (from its own start)."""
+
+LAST_STAGE_FORCINGS = (5e-2, FORCING)
+"""The GMRES forcing terms (:data:`.cohesive_newton.FORCING`) of the tries at the range's last stage, the law itself,
+each from the stage before and finished by the frozen traction where Newton stops near the answer. That stage is
+where a narrow zone's contact edge moves its last rings: at ``FORCING`` its first step's GMRES stagnated (204
+iterations of 273 on issue 38's sphere at lambda 10 on 512^2), and which of two nearby answers Newton's next steps
+reach turns on how inexact that step is, for every forcing tried (0.01-0.1; chaotic in the scene). A second try
+with another forcing then lands where the first did not: issue 38's sphere on 384^2 at lambda 5 (approach 0.002) and
+10 (approach 0.001) raised after 35 s at ``FORCING`` alone, and converge now in 3-4 s; over 17 scenes (256^2 to
+512^2, lambda 3.5-10, approaches 0.001 and 0.002) every one converges, 6-17x the plain solve, 9x the median
+(``benchmarks/bench_maugis.py``)."""
 
 FIRST_FRACTION = 1.0 / 16
 """The fraction of the work of adhesion a stalled solve's continuation starts from."""
@@ -233,11 +244,25 @@ def solve_cohesive(
 
     krylov_budget = max(NEWTON_WORK // heights.size, NEWTON_KRYLOV_FLOOR)
 
-    def newton(law, p, delta):  # every Newton solve draws on one bound of GMRES iterations
+    def newton(law, p, delta, forcing=FORCING):  # every Newton solve draws on one bound of GMRES iterations
         solved = CohesiveNewton(operator, heights, law, mean_pressure, penetration, tol, max_iter,
-                                krylov=krylov_budget - spent[1])(p, delta)
+                                krylov=krylov_budget - spent[1], forcing=forcing)(p, delta)
         spent[0], spent[1] = spent[0] + solved[4], spent[1] + solved[5]
         return solved
+
+    def finished(result):
+        """``result``, or where Newton stopped near the answer (its steps flipping the contact edge's active set) the
+        frozen traction's, whose rounds do not flip, from Newton's best state (issue 38's sphere at lambda 5 on 512^2:
+        11 rounds from 1.7e-5)."""
+        nonlocal method
+        if result[-1] or solve_repulsive is None or not np.isfinite(result[6]):
+            return result
+        finish = _FrozenTraction(operator, heights, adhesion, mean_pressure, penetration, tol, solve_repulsive,
+                                 stall_rounds=FROZEN_STALL_ROUNDS)(result[0], result[1])
+        if finish is None or not finish[-1]:
+            return result
+        method = "cohesive-newton+frozen-traction"
+        return (*finish[:4], result[4], result[5], *finish[6:])
 
     if result is None or not result[-1]:  # the frozen-traction iteration stalled: semi-smooth Newton
         method = "cohesive-newton"
@@ -254,18 +279,13 @@ def solve_cohesive(
             result = newton(adhesion, p, delta)
     if result is None or not result[-1]:  # stalled: continuation in the range (8, 4, 2, 1 times), stage to stage
         p_c, d_c = p, delta
-        for factor in RANGES:
+        for factor in RANGES[:-1]:
             result = newton(adhesion.replace(range=adhesion.range * factor), p_c, d_c)
             p_c, d_c = result[0], result[1]
-    if not result[-1] and solve_repulsive is not None and np.isfinite(result[6]):
-        # Newton stopped near the answer, where its steps flip the contact edge's active set: the frozen traction,
-        # whose rounds do not, finishes from its best state (issue 38's sphere at lambda 5 on 512^2: 11 rounds
-        # from 1.7e-5)
-        finish = _FrozenTraction(operator, heights, adhesion, mean_pressure, penetration, tol, solve_repulsive,
-                                 stall_rounds=FROZEN_STALL_ROUNDS)(result[0], result[1])
-        if finish is not None and finish[-1]:
-            result = (*finish[:4], result[4], result[5], *finish[6:])
-            method = "cohesive-newton+frozen-traction"
+        for forcing in LAST_STAGE_FORCINGS:  # the law itself: each try from the last stage, finished if need be
+            result = finished(newton(adhesion, p_c, d_c, forcing))
+            if result[-1]:
+                break
     if not result[-1] and initial_pressure is None:
         # still stalled: continuation in the work of adhesion from the cold start. Not from a warm start: a path
         # (contactlib.adhesion_curve) tries the cold start itself next, and ran this continuation twice a failed step

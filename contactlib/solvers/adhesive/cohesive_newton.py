@@ -69,10 +69,13 @@ GMRES_ITERATIONS = 20 * (GMRES_RESTART + 1)
 
 class CohesiveNewton:
     """One semi-smooth Newton solve of the cohesive contact at one range, of at most ``max_iter`` steps and
-    ``krylov`` GMRES iterations (None: :data:`GMRES_ITERATIONS` a step, no bound on their sum)."""
+    ``krylov`` GMRES iterations (None: :data:`GMRES_ITERATIONS` a step, no bound on their sum), each step's GMRES to
+    the relative residual ``forcing``."""
 
-    def __init__(self, operator, heights, adhesion, mean_pressure, penetration, tol, max_iter, krylov=None):
+    def __init__(self, operator, heights, adhesion, mean_pressure, penetration, tol, max_iter, krylov=None,
+                 forcing=FORCING):
         self.op, self.law, self.tol, self.max_iter = operator, adhesion, tol, int(max_iter)
+        self.forcing = float(forcing)
         self.krylov = krylov
         self.shape, self.n = heights.shape, heights.size
         self.h0 = heights.max() - heights
@@ -166,7 +169,7 @@ class CohesiveNewton:
                 rhs = np.concatenate([rhs, [-c * (float(p.mean()) - self.load)]])
             # the set solvers' GMRES (:func:`.krylov.gmres`), from zero, to a relative residual
             step, used, _ = gmres(lambda v: (matvec(v), 0.0), precondition, rhs, np.zeros_like(rhs), 0.0,
-                                  budget, restart=restart_for(n), relative=FORCING)
+                                  budget, restart=restart_for(n), relative=self.forcing)
             krylov += used
             # near the answer a step that multiplies the residual is cut back (halved up to BACKTRACK times): the
             # answer an active-set flip at the contact edge can throw a full step far off
