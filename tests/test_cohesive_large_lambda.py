@@ -118,7 +118,7 @@ def test_maugis_sphere_at_lambda_10_converges_on_a_finer_grid():
     same bounds of Maugis' answer (measured -0.08 % in force, -0.5 % in radius; 7 s on the shared machine). The
     parent ran 40 s and returned a state that the tension invariant refused: Newton at the law itself, then at the
     ranges 8-1, took steps that threw its residual from 1e-5 to 1e-1 (issue 38's finding 9, which on 512^2 raised
-    after 88 s and now converges in 14 s: ``benchmarks/bench_maugis.py``)."""
+    after 88 s and now converges in 6-18 s: ``benchmarks/bench_maugis.py``)."""
     n = 384
     h = contactlib.surfaces.paraboloid(n, length=LENGTH, radius=R)
     with warnings.catch_warnings():

@@ -42,9 +42,11 @@ than :data:`NARROW_ZONE` elements, the frozen traction's contact edge creeps an 
 at the law itself stalls: after the first frozen-traction attempt the solve goes straight to Newton's continuation
 in the range, from that attempt's best state. Newton moves the contact edge where the rounds creep, but near the
 answer its steps can flip the edge's active set back and forth (no halving then helps); it stops there, and the
-frozen traction, whose rounds do not flip, finishes from its best state (issue 38's sphere, non-periodic, lambda
-3.5-10: 6.4-7.9x the plain solve on 256^2 against 18-29x before; 14x and 19x at lambda 5 and 10 on 512^2, where
-the parent took 24x and raised after 88 s; ``benchmarks/bench_maugis.py``).
+frozen traction, whose rounds do not flip, finishes from its best state. Which of two nearby answers the last stage
+reaches turns on how inexact its steps are, so it is tried at two GMRES forcings (:data:`LAST_STAGE_FORCINGS`).
+Issue 38's sphere, non-periodic, lambda 3.5-10: 6.3-7.6x the plain solve on 256^2 against 18-29x before; 8.2-13.9x
+on 512^2, where the parent of these changes took 24x at lambda 5 and raised after 88 s at lambda 10
+(``benchmarks/bench_maugis.py``).
 
 A solve that does not meet ``tol`` comes back ``converged=False``. The residual is scale-free: the mean
 ``|phi| / c``, the interpenetration and the repulsive traction's weighted mean gap (``sum |p_r| |g| / sum |p_r|``,
