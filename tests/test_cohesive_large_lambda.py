@@ -137,8 +137,8 @@ def test_maugis_sphere_at_lambda_10_converges_on_a_finer_grid():
 
 @pytest.mark.parametrize("lam, penetration", [(5.0, 0.002), (10.0, 0.001)])
 def test_maugis_sphere_converges_where_one_forcing_lands_astray(lam, penetration):
-    """Two scenes on 384^2 whose last range stage Newton misses at one GMRES forcing (:data:`~contactlib.solvers.
-    adhesive.cohesive.LAST_STAGE_FORCINGS`): the parent raised ``ConvergenceError`` after 35 s on each (residual 1e-3,
+    """Two scenes on 384^2 whose last range stage Newton misses at one GMRES forcing (``LAST_STAGE_FORCINGS`` of
+    :mod:`contactlib.solvers.adhesive.cohesive`): the parent raised ``ConvergenceError`` after 35 s on each (residual 1e-3,
     its continuation in the work included); both converge now in 3-4 s, within the bounds of Maugis' answer above."""
     n = 384
     h = contactlib.surfaces.paraboloid(n, length=LENGTH, radius=R)
