@@ -151,7 +151,6 @@ class CohesiveNewton:
             on = active.astype(float)
             off = 1.0 - on
             slope = self.law.traction_slope(g)
-            size = n + (1 if self.control else 0)
 
             def matvec(v):
                 dp = v[:n].reshape(shape)
