@@ -154,3 +154,62 @@ def test_maugis_sphere_converges_where_one_forcing_lands_astray(lam, penetration
         ds = contactlib.solve(h, E=E, nu=NU, penetration=penetration, adhesion=law(lam), periodic=False)
     # measured: lambda 5 +0.09 % and +0.01 %, lambda 10 +0.02 % and -0.51 %
     assert_within_grid_bounds(ds, h, lam, penetration)
+
+
+def test_warm_start_that_holds_is_returned_on_its_branch():
+    """A warm start that is already an equilibrium of the law comes back as it is, with no Newton step: here the open
+    state of the sphere at approach -0.002, above the reach of the law solved on this grid (lambda 10, its zone
+    floored: range 5.6e-4, ramp to 8.9e-4). The parent ran the narrow zone's continuation in the range from it, whose
+    wider ranges (8 times the law's) pull the sphere into contact, and returned the adhesive branch as converged (15 %
+    of the window closed): a jump off the branch the warm start was on, which a path following it had not asked for
+    (:func:`contactlib.adhesion_curve` starts a step from the last state)."""
+    h = contactlib.surfaces.paraboloid(N, length=LENGTH, radius=R)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        ds = contactlib.solve(h, E=E, nu=NU, penetration=-0.002, adhesion=law(10.0), periodic=False,
+                              initial_pressure=np.zeros(h.shape))
+    assert ds.attrs["converged"] == 1
+    assert int(ds.iterations) == 0
+    assert float(ds.contact_area) == 0.0 and not np.any(ds.pressure.values)
+
+
+def test_warm_start_lost_in_the_range_continuation_stops_there():
+    """Issue 38's sphere on 512^2 at lambda 10, warm-started from its open state at approach -8.3e-5, where it snaps
+    in: the continuation's first stage (8 times the law's range) ends far from its answer (residual 7e-2). The solve
+    stops there (``LOST_STAGE``), unconverged, its residual that of its start at the law, after 38 GMRES iterations
+    (2.7 s); the parent ran every later stage from that state and both tries of the law, and failed too, after 1198
+    (76 s).
+    :func:`contactlib.adhesion_curve` reaches such a state through midpoints, each from a warm start."""
+    from contactlib.solvers.adhesive.cohesive import solve_cohesive
+    from contactlib.solvers.adhesive.cohesive_law import grid_law
+
+    n, penetration = 512, -8.3e-5
+    h = contactlib.surfaces.paraboloid(n, length=LENGTH, radius=R)
+    setup = contactlib.prepare(h, E=E, nu=NU, periodic=False, adhesion=law(10.0)).loaded(penetration=penetration)
+
+    def repulsive(heights, *, mean_pressure, penetration, tol=1e-6, initial_pressure=None, **limits):
+        return setup.solve_symmetric(heights, mean_pressure=mean_pressure, penetration=penetration, tol=tol,
+                                     initial_pressure=initial_pressure, **limits)
+
+    state, _ = solve_cohesive(setup.operator, setup.values, adhesion=grid_law(law(10.0), setup.operator),
+                              penetration=penetration, tol=1e-6, initial_pressure=np.zeros(h.shape),
+                              solve_repulsive=repulsive)
+    assert not state.converged and state.residual > 1e-4
+    assert state.outer_iterations <= 100
+
+
+def test_penetration_path_starts_from_separation_as_the_energy_method_does():
+    """A path of approaches -0.002, 0, -0.002 on the sphere at lambda 10: the cohesive path, like the energy method's
+    (``"jkr"``), starts apart (the open state holds at -0.002, beyond the law's reach), jumps into contact at 0 and
+    stays in contact on the way back (the adhesive branch, 15 % of the window closed against the energy method's 16 %).
+    The parent started the cohesive path from the cold start, whose continuation in the range pulled the sphere into
+    contact at -0.002: the loading state came back on the unloading branch, and no jump in was recorded."""
+    h = contactlib.surfaces.paraboloid(N, length=LENGTH, radius=R)
+    for adhesion in (law(10.0), contactlib.Adhesion(work=W, model="jkr")):
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            ds = contactlib.adhesion_curve(h, E=E, nu=NU, adhesion=adhesion, penetrations=[-0.002, 0.0],
+                                           periodic=False)
+        area = ds.contact_area.values
+        assert ds.converged.values.all()
+        assert area[0] == 0.0 and ds.jump.values[1] == 1 and area[2] > 0.1

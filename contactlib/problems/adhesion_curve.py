@@ -4,7 +4,9 @@ A path is a sequence of approaches (or of mean pressures) taken up, then back do
 solved from the previous one (a warm start), so the solve follows the branch it is on; where that
 branch ends the state jumps, and the jump is recorded:
 
-* cohesive laws: the warm-started Newton solve lands on whatever equilibrium is nearest. A jump is a
+* cohesive laws: the warm-started Newton solve lands on whatever equilibrium is nearest. A penetration path starts
+  from separation, as the energy method's does: a first approach below the highest point is solved from the open
+  state (which holds where the surface is beyond the law's reach). A jump is a
   step where the closed (repulsive) area appears or vanishes, or full contact is reached or left. A step
   whose solve fails is retried from the non-adhesive state and from the open one; if those fail too, the step is kept
   with ``converged = 0`` and NaN scalars and the path goes on (it never raises). Under load control, beyond the
@@ -145,12 +147,14 @@ each warm-started from the last, this many halvings deep at most. On a 64^2 roug
 5.3e-3) and converged through 0.25."""
 
 
-def _cohesive_step(setup, adhesion, args, warm, warm_d, *, cold=True):
+def _cohesive_step(setup, adhesion, args, warm, warm_d, *, cold=True, open_first=False):
     """The converged state at ``args``' load or penetration from the warm start ``(warm, warm_d)``, then (``cold``)
-    the non-adhesive state, then the open one (a jump lands on either); ``(None, smallest residual)`` if none."""
+    the non-adhesive state, then the open one (a jump lands on either; ``open_first``: the open one first);
+    ``(None, smallest residual)`` if none."""
     closest = math.nan
     # without a warm start the first attempt is the cold one: it is not solved twice
-    attempts = ([warm] if warm is not None else []) + ([None, np.zeros_like(setup.values)] if cold else [])
+    starts = [None, np.zeros_like(setup.values)]
+    attempts = ([warm] if warm is not None else []) + ((starts[::-1] if open_first else starts) if cold else [])
     for attempt in attempts:
         setup.solver_args = dict(args, initial_pressure=attempt)
         try:
@@ -190,7 +194,11 @@ def _cohesive_path(setup, adhesion, path, load_control):
         # penetration control: a failed warm start is approached through midpoints (from warm starts) before the
         # cold and open starts are tried, which only a jump needs (issue 38's Maugis sphere at lambda 5 on 256^2: a
         # failed unloading step cost 57 s of cold and open starts before its midpoint converged in 0.5 s)
-        state, closest = _cohesive_step(setup, adhesion, args, warm, warm_d, cold=load_control or warm is None)
+        # a penetration path starts from separation, as the energy method's does: its first state is solved from the
+        # open state where the surface is apart (issue 38's sphere on 512^2 at lambda 7: the open state, which holds
+        # there, came back after 46 s of the cold start's continuation in the range, at once from the open one)
+        state, closest = _cohesive_step(setup, adhesion, args, warm, warm_d, cold=load_control or warm is None,
+                                        open_first=bool(warm is None and not load_control and value < 0))
         if state is None and not load_control:
             state = _bisected_step(setup, adhesion, args, warm, warm_d, float(value))
         if state is None and not load_control and warm is not None:

@@ -34,7 +34,9 @@ Two methods, tried in this order:
    non-adhesive state by continuation in the work of adhesion (``w / 16`` first, doubled after each
    converged stage, bisected back after a failed one: :func:`_continuation`). All Newton solves of one solve
    share one bound on their GMRES iterations (:data:`NEWTON_WORK`), so that a failure comes back in about a minute,
-   not many.
+   not many. A warm start is a state on the branch a path follows: one that already holds comes back as it is, and
+   one whose continuation in the range is lost at a stage stops there (:data:`LOST_STAGE`), unconverged, for the
+   path's own fallbacks (:func:`contactlib.adhesion_curve`: midpoints, then the cold and open starts).
 
 A Maugis law whose process zone the grid does not resolve is solved as :mod:`.cohesive_law` regularises it (its ramp
 widened, its zone floored at :data:`.cohesive_law.ZONE_FLOOR` elements). There, and wherever the zone spans fewer
@@ -111,6 +113,13 @@ with another forcing then lands where the first did not: issue 38's sphere on 38
 10 (approach 0.001) raised after 35 s at ``FORCING`` alone, and converge now in 3-4 s; over 17 scenes (256^2 to
 512^2, lambda 3.5-10, approaches 0.001 and 0.002) every one converges, 6-17x the plain solve, 9x the median
 (``benchmarks/bench_maugis.py``)."""
+
+LOST_STAGE = 1e-4
+"""A warm-started solve whose continuation in the range leaves an intermediate stage above this residual stops there,
+unconverged. On issue 38's sphere on 512^2 the parent's paths at lambda 7 and 10 (13 states each) had 5 warm steps
+whose stages missed by 1.1e-6 to 6.9e-5, and every one then converged; the 3 whose stages missed by 2.7e-3 to 7.3e-2
+all failed, after 46-108 s of the later stages (a sphere snapping in from its open state: the path then reached the
+state through midpoints). Such a step now fails in 2-5 s."""
 
 FIRST_FRACTION = 1.0 / 16
 """The fraction of the work of adhesion a stalled solve's continuation starts from."""
@@ -210,7 +219,7 @@ def solve_cohesive(
         Bound on the Newton iterations per range.
     initial_pressure, initial_penetration : optional
         Warm start: the total traction [pressure] (and, load control, the approach) of a neighbouring
-        state, e.g. the previous point of a path.
+        state, e.g. the previous point of a path (module docstring: one that holds is returned as it is).
     solve_repulsive : callable, optional
         ``solve_repulsive(heights, mean_pressure=, penetration=, tol=, max_iter=, initial_pressure=)``: the
         scene's non-adhesive constrained solver, for a cold start.
@@ -246,8 +255,8 @@ def solve_cohesive(
 
     krylov_budget = max(NEWTON_WORK // heights.size, NEWTON_KRYLOV_FLOOR)
 
-    def newton(law, p, delta, forcing=FORCING):  # every Newton solve draws on one bound of GMRES iterations
-        solved = CohesiveNewton(operator, heights, law, mean_pressure, penetration, tol, max_iter,
+    def newton(law, p, delta, forcing=FORCING, steps=max_iter):  # every Newton solve draws on one bound of GMRES
+        solved = CohesiveNewton(operator, heights, law, mean_pressure, penetration, tol, steps,  # iterations
                                 krylov=krylov_budget - spent[1], forcing=forcing)(p, delta)
         spent[0], spent[1] = spent[0] + solved[4], spent[1] + solved[5]
         return solved
@@ -279,15 +288,24 @@ def solve_cohesive(
             delta = 0.0
         if not narrow:
             result = newton(adhesion, p, delta)
+        elif initial_pressure is not None:
+            # a narrow zone's warm start is measured at the law, no step taken: one that holds already (a path's open
+            # state out of the law's reach) is the answer, which the continuation's wider ranges would pull into
+            # contact
+            result = newton(adhesion, p, delta, steps=0)
     if result is None or not result[-1]:  # stalled: continuation in the range (8, 4, 2, 1 times), stage to stage
-        p_c, d_c = p, delta
+        start, (p_c, d_c) = result, (p, delta)
         for factor in RANGES[:-1]:
             result = newton(adhesion.replace(range=adhesion.range * factor), p_c, d_c)
-            p_c, d_c = result[0], result[1]
-        for forcing in LAST_STAGE_FORCINGS:  # the law itself: each try from the last stage, finished if need be
-            result = finished(newton(adhesion, p_c, d_c, forcing))
-            if result[-1]:
+            if initial_pressure is not None and not result[-1] and result[6] > LOST_STAGE:
+                result = start  # a warm start lost at a stage: the path's own fallbacks are cheaper (LOST_STAGE)
                 break
+            p_c, d_c = result[0], result[1]
+        else:
+            for forcing in LAST_STAGE_FORCINGS:  # the law itself: each try from the last stage, finished if need be
+                result = finished(newton(adhesion, p_c, d_c, forcing))
+                if result[-1]:
+                    break
     if not result[-1] and initial_pressure is None:
         # still stalled: continuation in the work of adhesion from the cold start. Not from a warm start: a path
         # (contactlib.adhesion_curve) tries the cold start itself next, and ran this continuation twice a failed step
