@@ -46,6 +46,7 @@ from scipy.optimize import brentq
 
 import contactlib
 from contactlib.reference import adhesive as ref
+from contactlib.reference import maugis
 
 R, W, E_STAR = 1.0, 2.83e-4, 1.0
 RADII = tuple(round(2.5 - 0.1 * k, 2) for k in range(17))  # JKR radii over a_c of the path, unloading
@@ -76,7 +77,7 @@ def path(h, lam: float, model: str, approaches, warm, length: float, tol: float)
         c = ref.apex_disc_radius(h.values, int(round(float(ds.interaction_area) * size)), radius=R)
         load = float(ds.mean_pressure) * length**2
         jkr = float(ref.jkr_load(a, radius=R, E_star=E_STAR, work=W))
-        md = (float(ref.maugis_load(a, radius=R, E_star=E_STAR, work=W, peak_stress=sigma0)[0])
+        md = (float(maugis.maugis_load(a, radius=R, E_star=E_STAR, work=W, peak_stress=sigma0)[0])
               if model == "maugis" else math.nan)
         disc.append(a)
         zone.append(c)
@@ -102,11 +103,11 @@ def _own(A, lams, equivalent: bool):
     values = []
     for lam in lams:
         if equivalent:  # the contact radius whose a + 2/3 (c - a) is A
-            inner = [brentq(lambda x: float(ref.jkr_equivalent_radius(x, x * ref.maugis_zone_ratio(x, lam))) - t,
+            inner = [brentq(lambda x: float(ref.jkr_equivalent_radius(x, x * maugis.maugis_zone_ratio(x, lam))) - t,
                             0.3 * t, t) for t in A]
-            values.append(ref.maugis_load_penetration(np.array(inner), lam)[0])
+            values.append(maugis.maugis_load_penetration(np.array(inner), lam)[0])
         else:
-            values.append(ref.maugis_load_penetration(A, lam)[0])
+            values.append(maugis.maugis_load_penetration(A, lam)[0])
     return (ref.jkr_extrapolation(values, lams) - A**3 + np.sqrt(6 * A**3)) / 1.5
 
 
@@ -134,7 +135,7 @@ def run(lams, n: int, length: float, model: str, radii_over, tol: float, equival
         # the comparison radius: the contact radius itself, or a + 2/3 (c - a) (ref.jkr_equivalent_radius)
         curves[lam] = (ref.jkr_equivalent_radius(disc, zone) if equivalent else disc, pixel, loads)
         print(f"{model} lambda {lam:g} n {n} L {length:g}: pull-off {loads.min() / scale:+.4f} |P_c| "
-              f"(JKR -1, Maugis {ref.maugis_pull_off(lam) / 1.5:+.4f}), {time.perf_counter() - start:.0f} s",
+              f"(JKR -1, Maugis {maugis.maugis_pull_off(lam) / 1.5:+.4f}), {time.perf_counter() - start:.0f} s",
               flush=True)
     A_scale = (K / (math.pi * W * R**2)) ** (1 / 3)
     lo = max(curves[lam][0].min() for lam in lams)
@@ -216,7 +217,7 @@ def hard(n: int, lams, repeat: int, penetration: float = 0.002) -> None:
         sigma0 = lam / 2 * (math.pi * w * K**2 / R) ** (1 / 3)
         law = contactlib.Adhesion(work=w, range=w / sigma0, model="maugis")
         wall, cpu, ds = timed(adhesion=law)
-        force, radius = ref.maugis_at_penetration(penetration, lam=lam, radius=R, E_star=e_star, work=w)
+        force, radius = maugis.maugis_at_penetration(penetration, lam=lam, radius=R, E_star=e_star, work=w)
         got = float(ds.mean_pressure) * length**2
         a = ref.apex_disc_radius(h.values, int(round(float(ds.contact_area) * h.size)), radius=R)
         print(f"n {n} lambda {lam:g} (zone {ds.attrs['process_zone_elements']:.2f} el): {wall:.2f} s wall "

@@ -24,6 +24,7 @@ import warnings
 import numpy as np
 import contactlib
 from contactlib.reference import adhesive as ref
+from contactlib.reference import maugis
 
 E, NU, RADIUS, WORK, LENGTH, PENETRATION = 1.0, 0.5, 1.0, 1e-4, 0.25, 0.002
 E_STAR = E / (1 - NU**2)
@@ -97,7 +98,7 @@ def single(h, law, n, lam, approach, repeats) -> float:
     if isinstance(out, Exception):
         print(f"{row} {'raised':>9} {'':>10} {str(out)[:80]}", flush=True)
         return t_plain
-    force, radius = ref.maugis_at_penetration(approach, lam=lam, radius=RADIUS, E_star=E_STAR, work=WORK)
+    force, radius = maugis.maugis_at_penetration(approach, lam=lam, radius=RADIUS, E_star=E_STAR, work=WORK)
     got_radius = ref.apex_disc_radius(h.values, int(round(float(out.contact_area) * h.size)), radius=RADIUS)
     print(f"{row} {float(out.normal_force) / force - 1:>+9.4f} {got_radius / radius - 1:>+10.4f} "
           f"{out.attrs['solver']}", flush=True)

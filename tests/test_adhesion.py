@@ -6,13 +6,13 @@ import warnings
 
 import numpy as np
 import pytest
-import xarray as xr
 
 import contactlib
 from contactlib import prepare
 from contactlib import Adhesion
 from contactlib.model.adhesion import CohesiveZoneWarning
 from contactlib.reference import adhesive as ref
+from contactlib.reference import maugis
 from contactlib.reference import westergaard
 
 
@@ -118,7 +118,7 @@ def _maugis_sphere_path(h, L, R, w, lam, steps, warm):
         zones.append(ref.apex_disc_radius(h.values, int(round(float(ds.interaction_area) * h.size)), radius=R))
         loads.append(float(ds.mean_pressure) * L * L)
         pressures.append(ds.pressure.values)
-        md = float(ref.maugis_load(radii[-1], radius=R, E_star=1.0, work=w, peak_stress=sigma0)[0])
+        md = float(maugis.maugis_load(radii[-1], radius=R, E_star=1.0, work=w, peak_stress=sigma0)[0])
         assert abs(loads[-1] - md) < 0.01 * abs(ref.jkr_pull_off(radius=R, work=w)), (lam, d, loads[-1], md)
     return np.array(radii), np.array(zones), np.array(loads), pressures
 
@@ -157,7 +157,7 @@ def test_jkr_sphere_cohesive_route_and_its_limit():
         warnings.simplefilter("error", CohesiveZoneWarning)
         for lam in lams:
             a, c, P, warm = _maugis_sphere_path(h, L, R, w, lam, steps, warm)
-            assert P.min() / (np.pi * w * R) == pytest.approx(ref.maugis_pull_off(lam), rel=0.01)
+            assert P.min() / (np.pi * w * R) == pytest.approx(maugis.maugis_pull_off(lam), rel=0.01)
             assert np.all(c > a)
             # the finite lambda shows: at its contact radius no run alone is within 5 % of JKR at the top
             assert (P[0] - ref.jkr_load(a[0], radius=R, E_star=1.0, work=w)) / scale > 0.05
@@ -185,7 +185,7 @@ def test_jkr_extrapolation_on_maugis_closed_form():
     A_c = 1.5 ** (1 / 3)  # a_c in Maugis' units
     A = A_c * np.linspace(1.0, 2.5, 31)
     jkr = A**3 - np.sqrt(6 * A**3)
-    P = {lam: ref.maugis_load_penetration(A, lam)[0] for lam in (1.5, 2.0, 2.5, 3.0, 10.0, 20.0, 40.0)}
+    P = {lam: maugis.maugis_load_penetration(A, lam)[0] for lam in (1.5, 2.0, 2.5, 3.0, 10.0, 20.0, 40.0)}
     for lam in (10.0, 20.0):
         e_1, e_2 = P[lam] - jkr, P[2 * lam] - jkr  # e_1 = 4 e_2 for a 1 / lambda^2 term alone
         assert np.abs(e_1 - 4 * e_2).max() < 0.05 * np.abs(e_1).max()
@@ -201,9 +201,9 @@ def test_jkr_extrapolation_on_maugis_closed_form():
     from scipy.optimize import brentq
 
     def at_equivalent(lam):  # Maugis' load at the contact radius whose a + 2/3 (c - a) is A
-        inner = [brentq(lambda x: float(ref.jkr_equivalent_radius(x, x * ref.maugis_zone_ratio(x, lam))) - t,
+        inner = [brentq(lambda x: float(ref.jkr_equivalent_radius(x, x * maugis.maugis_zone_ratio(x, lam))) - t,
                         0.3 * t, t) for t in A]
-        return ref.maugis_load_penetration(np.array(inner), lam)[0]
+        return maugis.maugis_load_penetration(np.array(inner), lam)[0]
 
     lams = (1.5, 2.0, 2.5)
     error = np.abs(ref.jkr_extrapolation([at_equivalent(lam) for lam in lams], lams) - jkr) / 1.5
@@ -236,7 +236,7 @@ def test_maugis_dugdale_sphere_lambda_one():
     law = Adhesion(work=w, range=w / sigma0, model="maugis")
     h = contactlib.surfaces.paraboloid(n, length=L, radius=R)
     A = np.linspace(0.8, 2.5, 3401)  # the stable branch under displacement control: D grows with A
-    P_ref, D_ref = ref.maugis_load_penetration(A, lam)
+    P_ref, D_ref = maugis.maugis_load_penetration(A, lam)
     assert np.all(np.diff(D_ref) > 0)
     ds = None
     for d in (0.004, 0.0, -0.004):
@@ -652,10 +652,10 @@ def test_cohesive_sphere_does_not_depend_on_the_window(model, range_, penetratio
 
 
 def test_maugis_at_penetration_inverts_the_closed_form():
-    """:func:`contactlib.reference.adhesive.maugis_at_penetration` returns the contact radius whose approach (eq. 6.19)
+    """:func:`contactlib.reference.maugis.maugis_at_penetration` returns the contact radius whose approach (eq. 6.19)
     is the one asked, and that radius's load (eq. 6.17), in physical units: a dimensionless radius of 2 at lambda 3
     round-trips to 1e-10."""
-    from contactlib.reference.adhesive import maugis_at_penetration, maugis_load_penetration
+    from contactlib.reference.maugis import maugis_at_penetration, maugis_load_penetration
 
     R, E_star, w, lam, A = 0.5, 1.3, 2e-4, 3.0, 2.0
     K = 4 * E_star / 3

@@ -116,7 +116,7 @@ def hard_law(radius, lam):
 
 def maugis_mean_pressure(length, radius, lam, penetration):
     """Maugis' mean pressure over the window at the approach ``penetration``, on the branch of the largest contact."""
-    from contactlib.reference.adhesive import maugis_at_penetration
+    from contactlib.reference.maugis import maugis_at_penetration
 
     force, _ = maugis_at_penetration(penetration, lam=lam, radius=radius, E_star=E_STAR, work=HARD_WORK)
     return force / length**2

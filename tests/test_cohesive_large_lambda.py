@@ -21,6 +21,7 @@ import pytest
 
 import contactlib
 from contactlib.reference import adhesive as ref
+from contactlib.reference import maugis as md
 from contactlib.solvers.adhesive.cohesive_law import ZONE_FLOOR
 
 E, NU, R, W = 1.0, 0.5, 1.0, 1e-4
@@ -39,14 +40,14 @@ def law(lam):
 def maugis(lam, penetration):
     """Maugis' force [force] and contact radius [length] at the approach ``penetration`` (the branch of the largest
     contact)."""
-    return ref.maugis_at_penetration(penetration, lam=lam, radius=R, E_star=E_STAR, work=W)
+    return md.maugis_at_penetration(penetration, lam=lam, radius=R, E_star=E_STAR, work=W)
 
 
 def grid_lambda():
     """The Maugis parameter of the law the grid resolves: its zone ``pi E* w / (4 sigma^2)`` spans ZONE_FLOOR
     spacings."""
     sigma = math.sqrt(math.pi * E_STAR * W / (4 * ZONE_FLOOR * LENGTH / N))
-    return ref.maugis_parameter(radius=R, E_star=E_STAR, work=W, peak_stress=sigma)
+    return md.maugis_parameter(radius=R, E_star=E_STAR, work=W, peak_stress=sigma)
 
 
 @pytest.mark.parametrize("lam", [5.0, 10.0])
@@ -134,7 +135,7 @@ def assert_within_grid_bounds(ds, h, lam, penetration):
     assert ds.attrs["converged"] == 1 and float(ds.residual) <= 1e-6
     force, radius = maugis(lam, penetration)
     sigma = min(law(lam).peak_stress, math.sqrt(math.pi * E_STAR * W / (4 * ZONE_FLOOR * LENGTH / n)))
-    force_grid, radius_grid = maugis(ref.maugis_parameter(radius=R, E_star=E_STAR, work=W, peak_stress=sigma),
+    force_grid, radius_grid = maugis(md.maugis_parameter(radius=R, E_star=E_STAR, work=W, peak_stress=sigma),
                                      penetration)
     got_force = float(ds.mean_pressure) * LENGTH**2
     got_radius = ref.apex_disc_radius(h.values, int(round(float(ds.contact_area) * h.size)), radius=R)

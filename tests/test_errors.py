@@ -349,10 +349,11 @@ def test_reference_modules_are_there_without_an_import():
     hand (a fresh interpreter: in this one another test may have imported them)."""
     code = ("import contactlib; r = contactlib.reference; "
             "print(r.adhesive.jkr_pull_off(radius=1.0, work=1.0), callable(r.sliding_cylinder.contact), "
-            "r.hunter.__name__, r.viscoelastic_profile.__name__)")
+            "r.hunter.__name__, r.viscoelastic_profile.__name__, r.maugis.maugis_pull_off(1e3))")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
     assert out.returncode == 0, out.stderr
     assert float(out.stdout.split()[0]) == pytest.approx(-1.5 * np.pi, rel=1e-12)
+    assert float(out.stdout.split()[-1]) == pytest.approx(-1.5, rel=1e-6)  # Maugis' pull-off: JKR's at lambda 1e3
 
 
 def test_spheres_default_summit_height_works_without_scatter():

@@ -3,6 +3,6 @@ cylinder (JKR, DMT, Maugis), the steadily sliding viscoelastic cylinder, Hunter'
 viscoelastic profile. All are imported here, so ``contactlib.reference.adhesive`` works without a separate import
 (none of them imports the contact solvers' entry points: no cycle, and numpy and scipy only)."""
 
-from . import adhesive, hertz, hunter, sliding_cylinder, viscoelastic_profile, westergaard
+from . import adhesive, hertz, hunter, maugis, sliding_cylinder, viscoelastic_profile, westergaard
 
-__all__ = ["adhesive", "hertz", "hunter", "sliding_cylinder", "viscoelastic_profile", "westergaard"]
+__all__ = ["adhesive", "hertz", "hunter", "maugis", "sliding_cylinder", "viscoelastic_profile", "westergaard"]
