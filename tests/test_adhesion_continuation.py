@@ -7,6 +7,7 @@ import pytest
 
 import contactlib
 import contactlib.solvers.adhesive.cohesive as cohesive
+import contactlib.solvers.adhesive.cohesive_frozen as cohesive_frozen
 import contactlib.solvers.adhesive.cohesive_newton as cohesive_newton
 from contactlib.core.grid import Grid
 from contactlib.core.inputs import grid_of
@@ -40,9 +41,9 @@ def test_lower_offset_moves_the_heights(periodic, shape):
 def solve_both(monkeypatch, h, **scene):
     """The scene solved with the rounds inside one solve, and with a solve restarted each round."""
     inside = contactlib.solve(h, E=1.0, nu=0.0, tol=1e-10, **scene)
-    monkeypatch.setattr(cohesive, "CONTINUED", False)
+    monkeypatch.setattr(cohesive_frozen, "CONTINUED", False)
     restarted = contactlib.solve(h, E=1.0, nu=0.0, tol=1e-10, **scene)
-    monkeypatch.setattr(cohesive, "CONTINUED", True)
+    monkeypatch.setattr(cohesive_frozen, "CONTINUED", True)
     return inside, restarted
 
 

@@ -14,6 +14,7 @@ import pytest
 
 import contactlib
 import contactlib.solvers.adhesive.cohesive as cohesive
+import contactlib.solvers.adhesive.cohesive_frozen as cohesive_frozen
 
 E, NU = 1.0, 0.5
 E_STAR = E / (1 - NU**2)
@@ -51,7 +52,7 @@ def test_load_control_returns_the_load_asked(monkeypatch, model, route, fraction
     at most 0.02 of that bound)."""
     law = sphere_law(model)
     if route == "newton":
-        monkeypatch.setattr(cohesive, "MAX_ROUNDS", 1)
+        monkeypatch.setattr(cohesive_frozen, "MAX_ROUNDS", 1)
     asked = fraction * PULL_OFF
     ds = solve(law, asked)
     assert ds.attrs["converged"] == 1 and float(ds.residual) <= TOL
@@ -150,7 +151,7 @@ def test_newton_work_is_bounded(monkeypatch):
     """Newton alone (the frozen traction given one round) with a bound of 50 GMRES iterations over all its solves:
     it raises :class:`contactlib.ConvergenceError` with its residual, within that bound (the parent had no bound: it
     ran 49 s and converged)."""
-    monkeypatch.setattr(cohesive, "MAX_ROUNDS", 1)
+    monkeypatch.setattr(cohesive_frozen, "MAX_ROUNDS", 1)
     monkeypatch.setattr(cohesive, "NEWTON_WORK", 1, raising=False)
     monkeypatch.setattr(cohesive, "NEWTON_KRYLOV_FLOOR", 50, raising=False)
     with pytest.raises(contactlib.ConvergenceError) as caught:

@@ -1,6 +1,6 @@
 """The frozen-traction cohesive iteration as rounds inside one Polonsky-Keer solve.
 
-:class:`contactlib.solvers.adhesive.cohesive._FrozenTraction` holds the adhesive traction ``a`` fixed, runs a few
+:class:`contactlib.solvers.adhesive.cohesive_frozen.FrozenTraction` holds the adhesive traction ``a`` fixed, runs a few
 constrained-CG iterations of the non-adhesive contact on the heights ``h - K a``, evaluates the law at the new
 gap and mixes the next ``a``. Restarting the CG each round cost its set-up and finish every time (the offset
 heights' transform, the evaluation at the warm start, the state's assembly: about 3.5 ms a round at 256^2, a
@@ -23,9 +23,9 @@ class Rounds:
 
     Parameters
     ----------
-    frozen : contactlib.solvers.adhesive.cohesive._FrozenTraction
-        Judges each round (:meth:`~contactlib.solvers.adhesive.cohesive._FrozenTraction.judge`), mixes the next traction
-        (``frozen.mix``) and keeps the law's traction at the last gap (``frozen.image``).
+    frozen : contactlib.solvers.adhesive.cohesive_frozen.FrozenTraction
+        Judges each round (:meth:`~contactlib.solvers.adhesive.cohesive_frozen.FrozenTraction.judge`), mixes the next
+        traction (``frozen.mix``) and keeps the law's traction at the last gap (``frozen.image``).
     a : ndarray
         The frozen traction the solve's heights start from [pressure] (the heights are ``h - K a``).
     load : float or None

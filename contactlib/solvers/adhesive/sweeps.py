@@ -1,6 +1,6 @@
 """Fused element-wise passes of the frozen-traction cohesive iteration (numba, serial).
 
-Each round of :class:`contactlib.solvers.adhesive.cohesive._FrozenTraction` evaluates the cohesive law at the new
+Each round of :class:`contactlib.solvers.adhesive.cohesive_frozen.FrozenTraction` evaluates the cohesive law at the new
 gap, the residual of the state, and an Anderson mixing step: in numpy some thirty passes over the grid
 and their temporaries, which cost as much per round as one or two Polonsky-Keer iterations (256^2). Here
 they are three sweeps: :func:`law_residual` and the fused :class:`.anderson.Anderson`'s two. Arrays are flat and
