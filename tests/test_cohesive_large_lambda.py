@@ -174,15 +174,19 @@ def test_warm_start_that_holds_is_returned_on_its_branch():
     assert float(ds.contact_area) == 0.0 and not np.any(ds.pressure.values)
 
 
-def test_warm_start_lost_in_the_range_continuation_stops_there():
+def test_warm_start_lost_in_the_range_continuation_stops_there(monkeypatch):
     """Issue 38's sphere on 512^2 at lambda 10, warm-started from its open state at approach -8.3e-5, where it snaps
-    in: the continuation's first stage (8 times the law's range) ends far from its answer (residual 7e-2). The solve
-    stops there (``LOST_STAGE``), unconverged, its residual that of its start at the law, after 38 GMRES iterations
-    (2.7 s); the parent ran every later stage from that state and both tries of the law, and failed too, after 1198
-    (76 s).
+    in, with the ramp of :data:`~contactlib.solvers.adhesive.cohesive_law.RAMP_GAIN` 0.45 (the law of the commit that
+    brought ``LOST_STAGE``; at 0.25 this start converges): the continuation's first stage (8 times the law's range)
+    ends far from its answer (residual 7e-2). The solve stops there (``LOST_STAGE``), unconverged, its residual that
+    of its start at the law, after 38 GMRES iterations (2.7 s); the parent ran every later stage from that state and
+    both tries of the law, and failed too, after 1198 (76 s).
     :func:`contactlib.adhesion_curve` reaches such a state through midpoints, each from a warm start."""
+    from contactlib.solvers.adhesive import cohesive_law
     from contactlib.solvers.adhesive.cohesive import solve_cohesive
     from contactlib.solvers.adhesive.cohesive_law import grid_law
+
+    monkeypatch.setattr(cohesive_law, "RAMP_GAIN", 0.45)
 
     n, penetration = 512, -8.3e-5
     h = contactlib.surfaces.paraboloid(n, length=LENGTH, radius=R)
@@ -214,3 +218,23 @@ def test_penetration_path_starts_from_separation_as_the_energy_method_does():
         area = ds.contact_area.values
         assert ds.converged.values.all()
         assert area[0] == 0.0 and ds.jump.values[1] == 1 and area[2] > 0.1
+
+
+def test_first_state_past_the_jump_in_is_reached_from_contact():
+    """Issue 38's sphere on 512^2 at lambda 10, a path from 0.5e-3 apart. The law as this grid solves it (zone floored,
+    ramp to twice the range) reaches 0.56e-3 apart and jumps in from between 0.57e-3 and 0.54e-3, so there the state is
+    in contact: the JKR-like disc, about a quarter of the window. No start at the state reaches it (the open one
+    stalls, the cold one is the open one); the path reaches it from the contact at the mirrored approach, unloading
+    through midpoints, as its own unloading half does (area 0.2666 there). The parent's law reached 0.44e-3 apart, and
+    the open state held."""
+    h = contactlib.surfaces.paraboloid(512, length=LENGTH, radius=R)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        ds = contactlib.adhesion_curve(h, E=E, nu=NU, adhesion=law(10.0), penetrations=[-5e-4, -4e-4],
+                                       periodic=False)
+    assert ds.attrs["converged"] == 1 and np.all(ds.converged.values == 1)
+    first = float(ds.contact_area.values[0])
+    assert 0.26 < first < 0.27
+    # the same state as the path's unloading end reaches from -4e-4, and no jump recorded at the first state
+    assert math.isclose(first, float(ds.contact_area.values[-1]), rel_tol=1e-3)
+    assert int(ds.jump.values[0]) == 0
