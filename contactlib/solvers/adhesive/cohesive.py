@@ -47,9 +47,9 @@ in the range, from that attempt's best state. Newton moves the contact edge wher
 answer its steps can flip the edge's active set back and forth (no halving then helps); it stops there, and the
 frozen traction, whose rounds do not flip, finishes from its best state. Which of two nearby answers the last stage
 reaches turns on how inexact its steps are, so it is tried at two GMRES forcings (:data:`LAST_STAGE_FORCINGS`).
-Issue 38's sphere, non-periodic, lambda 3.5-10: 6.3-7.6x the plain solve on 256^2 against 18-29x before; 8.2-13.9x
-on 512^2, where the parent of these changes took 24x at lambda 5 and raised after 88 s at lambda 10
-(``benchmarks/bench_maugis.py``).
+Issue 38's sphere, non-periodic, lambda 3.5-10: 5.5-6.9x the plain solve on 256^2 against 18-29x before these
+changes; 7.3-8.0x on 512^2 at lambda 5-10 (the grid's law: :data:`.cohesive_law.RAMP_GAIN`), 14.9x at lambda 3.5, where
+the frozen traction's continuation solves a resolved zone (``benchmarks/bench_maugis.py``).
 
 A solve that does not meet ``tol`` comes back ``converged=False``. The residual is scale-free: the mean
 ``|phi| / c``, the interpenetration and the repulsive traction's weighted mean gap (``sum |p_r| |g| / sum |p_r|``,
