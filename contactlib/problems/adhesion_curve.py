@@ -192,7 +192,7 @@ def _from_contact(setup, adhesion, args, value):
     """A path's first state apart (approach ``value < 0``) where the open state does not hold: past the jump in, so
     the state is in contact. It is reached from contact, as the unloading path reaches it: the cold state at the
     mirrored approach ``-value``, unloaded to ``value`` through midpoints; None where that fails too. Issue 38's sphere
-    on 512^2 at lambda 10, from 0.5e-3 apart (the law as the grid solves it jumps in from 0.55e-3): 24 s, where the
+    on 512^2 at lambda 10, from 0.5e-3 apart (the law as the grid solves it jumps in from 0.54-0.57e-3): 24 s, where the
     cold start at the state itself failed after 45 s."""
     touching, _ = _cohesive_step(setup, adhesion, dict(args, penetration=-value), None, None)
     if touching is None:
