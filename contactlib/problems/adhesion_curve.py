@@ -211,9 +211,10 @@ def _cohesive_path(setup, adhesion, path, load_control):
         # a penetration path starts from separation, as the energy method's does: its first state is solved from the
         # open state where the surface is apart (issue 38's sphere on 512^2 at lambda 7: the open state, which holds
         # there, came back after 46 s of the cold start's continuation in the range, at once from the open one)
+        apart = bool(warm is None and not load_control and value < 0)  # a penetration path's first state, apart
         state, closest = _cohesive_step(setup, adhesion, args, warm, warm_d, cold=load_control or warm is None,
-                                        open_first=bool(warm is None and not load_control and value < 0))
-        if state is None and not load_control and warm is None and value < 0:
+                                        open_first=apart)
+        if state is None and apart:
             state = _from_contact(setup, adhesion, args, float(value))
         if state is None and not load_control:
             state = _bisected_step(setup, adhesion, args, warm, warm_d, float(value))
