@@ -112,6 +112,23 @@ with another forcing then lands where the first did not: issue 38's sphere on 38
 512^2, lambda 3.5-10, approaches 0.001 and 0.002) every one converges, 6-17x the plain solve, 9x the median
 (``benchmarks/bench_maugis.py``)."""
 
+PATH_KRYLOV = 150
+"""GMRES iterations of a Maugis path step's first try: Newton at the law itself, from the last state when loading (the
+contact grows) and from the frozen traction's first attempt when unloading (a Newton step from the last state itself
+there met a first system that did not converge). On issue 38's sphere on 512^2 the converging tries took 63-137
+(9-17 Newton steps); those that fail are cut here or by :data:`PATH_FIRST_KRYLOV`, and the step goes on as a cold
+one would. That sphere's paths of 13 states (``benchmarks/bench_maugis.py --path 7``) then took 90 s against 101-105 s
+at lambda 7, 120 s against 147 s at lambda 10, 106 s against 136 s at lambda 3.5 (same machine, one run each)."""
+
+PATH_FIRST_KRYLOV = 40
+"""GMRES iterations of that try's first Newton step: where its system does not converge within them the start is too
+far for a short try (the tries that converged took 6-31 there, those that failed stagnated to 200)."""
+
+PATH_FINISH = 1e-4
+"""A path step's try that stops above ``tol`` but within this residual is finished by the frozen traction
+(:func:`solve_cohesive`'s ``finished``): on issue 38's sphere at lambda 10 on 512^2 two loading tries stopped at 1.4e-5
+and 2e-5, a step took 5-9 s more without the finish."""
+
 LOST_STAGE = 1e-4
 """A warm-started solve whose continuation in the range leaves an intermediate stage above this residual stops there,
 unconverged. On issue 38's sphere on 512^2 the parent's paths at lambda 7 and 10 (13 states each) had 5 warm steps
@@ -206,20 +223,24 @@ def solve_cohesive(
     # a narrow Maugis zone: from the first frozen-traction attempt straight to Newton's continuation in the range
     narrow = adhesion.model == "maugis" and (process_zone_length(adhesion, operator.E_star)
                                              < NARROW_ZONE * max(operator.grid.spacing))
-    if solve_repulsive is not None:  # cold: its first round is the non-adhesive solve, to a loose tolerance
-        result = FrozenTraction(operator, heights, adhesion, mean_pressure, penetration, tol,
-                                 solve_repulsive)(p, delta)
-        if result is not None and not result[-1] and np.isfinite(result[6]) and not narrow:
-            result = _frozen_continuation(operator, heights, adhesion, mean_pressure, penetration, tol,
-                                          solve_repulsive, p, delta, result)
+    # a Maugis step along a penetration path (a warm start with its approach): +1 loading, -1 unloading, else 0. Not
+    # in a narrow zone whose law may yet be widened (.cohesive_law.GridLaw.widened): the try at the law as asked failed
+    # on every step of issue 38's sphere on 256^2 at lambda 3.5 (gain 0.51), a path of 18 s against 11 s
+    path_step = 0.0
+    if (adhesion.model == "maugis" and p is not None and not load_control and initial_penetration is not None
+            and not (narrow and adhesion.widened() is not None)):
+        path_step = float(np.sign(penetration - initial_penetration))
     method = "cohesive-frozen-traction"
     spent = [0, 0]  # Newton steps and GMRES iterations of every Newton solve: the failed ones' are reported too
 
     krylov_budget = max(NEWTON_WORK // heights.size, NEWTON_KRYLOV_FLOOR)
 
-    def newton(law, p, delta, forcing=FORCING, steps=max_iter):  # every Newton solve draws on one bound of GMRES
-        solved = CohesiveNewton(operator, heights, law, mean_pressure, penetration, tol, steps,  # iterations
-                                krylov=krylov_budget - spent[1], forcing=forcing)(p, delta)
+    def newton(law, p, delta, forcing=FORCING, steps=max_iter, krylov=None, first_krylov=None):
+        # every Newton solve draws on one bound of GMRES iterations
+        left = krylov_budget - spent[1]
+        solved = CohesiveNewton(operator, heights, law, mean_pressure, penetration, tol, steps,
+                                krylov=left if krylov is None else min(krylov, left), forcing=forcing,
+                                first_krylov=first_krylov)(p, delta)
         spent[0], spent[1] = spent[0] + solved[4], spent[1] + solved[5]
         return solved
 
@@ -237,6 +258,30 @@ def solve_cohesive(
         method = "cohesive-newton+frozen-traction"
         return (*finish[:4], result[4], result[5], *finish[6:])
 
+    def path_try(p, delta):
+        """A path step's short try at the law itself (:data:`PATH_KRYLOV`), finished by the frozen traction from
+        within :data:`PATH_FINISH`; None where it does not converge."""
+        nonlocal method
+        solved = newton(adhesion, p, delta, krylov=PATH_KRYLOV, first_krylov=PATH_FIRST_KRYLOV)
+        if not solved[-1] and solved[6] <= PATH_FINISH:
+            solved = finished(solved)
+        if not solved[-1]:
+            return None
+        if method == "cohesive-frozen-traction":
+            method = "cohesive-newton"
+        return solved
+
+    if path_step > 0.0:  # loading: Newton at the law straight from the last state
+        result = path_try(p, delta)
+    if result is None and solve_repulsive is not None:  # cold: its first round is the non-adhesive solve, to a
+        result = FrozenTraction(operator, heights, adhesion, mean_pressure, penetration, tol,  # loose tolerance
+                                 solve_repulsive)(p, delta)
+        if path_step < 0.0 and result is not None and not result[-1] and np.isfinite(result[6]):
+            # unloading: Newton at the law from the frozen traction's first attempt
+            result = path_try(result[0], result[1]) or result
+        if result is not None and not result[-1] and np.isfinite(result[6]) and not narrow:
+            result = _frozen_continuation(operator, heights, adhesion, mean_pressure, penetration, tol,
+                                          solve_repulsive, p, delta, result)
     if result is None or not result[-1]:  # the frozen-traction iteration stalled: semi-smooth Newton
         method = "cohesive-newton"
         wider = adhesion.widened()

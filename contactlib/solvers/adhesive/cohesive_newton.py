@@ -70,13 +70,14 @@ GMRES_ITERATIONS = 20 * (GMRES_RESTART + 1)
 class CohesiveNewton:
     """One semi-smooth Newton solve of the cohesive contact at one range, of at most ``max_iter`` steps and
     ``krylov`` GMRES iterations (None: :data:`GMRES_ITERATIONS` a step, no bound on their sum), each step's GMRES to
-    the relative residual ``forcing``."""
+    the relative residual ``forcing``. With ``first_krylov`` the solve ends, no step taken, where the first step's
+    GMRES does not reach ``forcing`` within that many iterations: a start too far from the answer for a short try."""
 
     def __init__(self, operator, heights, adhesion, mean_pressure, penetration, tol, max_iter, krylov=None,
-                 forcing=FORCING):
+                 forcing=FORCING, first_krylov=None):
         self.op, self.law, self.tol, self.max_iter = operator, adhesion, tol, int(max_iter)
         self.forcing = float(forcing)
-        self.krylov = krylov
+        self.krylov, self.first_krylov = krylov, first_krylov
         self.shape, self.n = heights.shape, heights.size
         self.h0 = heights.max() - heights
         self.load = mean_pressure
@@ -145,6 +146,9 @@ class CohesiveNewton:
                 it -= 1
                 break
             budget = GMRES_ITERATIONS if self.krylov is None else min(GMRES_ITERATIONS, self.krylov - krylov)
+            first = it == 1 and self.first_krylov is not None
+            if first:
+                budget = min(budget, self.first_krylov)
             if it - best_it > STALL or not residual < bound or budget <= 0:
                 it -= 1  # no step taken in this pass
                 break
@@ -170,6 +174,9 @@ class CohesiveNewton:
             step, used, _ = gmres(lambda v: (matvec(v), 0.0), precondition, rhs, np.zeros_like(rhs), 0.0,
                                   budget, restart=restart_for(n), relative=self.forcing)
             krylov += used
+            if first and used >= budget:  # the first system stagnates: this start is too far for a short try
+                it -= 1
+                break
             # near the answer a step that multiplies the residual is cut back (halved up to BACKTRACK times): the
             # answer an active-set flip at the contact edge can throw a full step far off
             for halving in range(BACKTRACK + 1):
