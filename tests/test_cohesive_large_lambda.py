@@ -238,3 +238,62 @@ def test_first_state_past_the_jump_in_is_reached_from_contact():
     # the same state as the path's unloading end reaches from -4e-4, and no jump recorded at the first state
     assert math.isclose(first, float(ds.contact_area.values[-1]), rel_tol=1e-3)
     assert int(ds.jump.values[0]) == 0
+
+
+def _cohesive_solver(n, lam, penetration):
+    """``solve(initial_pressure=, initial_penetration=)``: :func:`~contactlib.solvers.adhesive.cohesive.solve_cohesive`
+    on the sphere of ``n^2`` at ``lambda`` and ``penetration``, with the scene's own non-adhesive solver."""
+    from contactlib.solvers.adhesive.cohesive import solve_cohesive
+    from contactlib.solvers.adhesive.cohesive_law import grid_law
+
+    h = contactlib.surfaces.paraboloid(n, length=LENGTH, radius=R)
+    setup = contactlib.prepare(h, E=E, nu=NU, periodic=False, adhesion=law(lam)).loaded(penetration=penetration)
+
+    def repulsive(heights, *, mean_pressure, penetration, tol=1e-6, initial_pressure=None, **limits):
+        return setup.solve_symmetric(heights, mean_pressure=mean_pressure, penetration=penetration, tol=tol,
+                                     initial_pressure=initial_pressure, **limits)
+
+    def solve(**warm):
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            return solve_cohesive(setup.operator, setup.values, adhesion=grid_law(law(lam), setup.operator),
+                                  penetration=penetration, tol=1e-6, solve_repulsive=repulsive, **warm)[0]
+    return solve
+
+
+def test_loading_step_of_a_path_is_solved_at_the_law_from_the_last_state():
+    """The sphere at lambda 7 (zone floored, the widest ramp), a loading step from the approach 0.001 to 0.0015 warm
+    started from the state at 0.001, as :func:`contactlib.adhesion_curve` runs it: Newton at the law itself from that
+    state (:data:`~contactlib.solvers.adhesive.cohesive.SHORT_KRYLOV`) converges in 5 steps (32 GMRES iterations). The
+    parent ran the frozen traction's first attempt and the continuation in the range (8, 4, 2, 1 times) from it, 22
+    steps (124 GMRES iterations; on 512^2 a path step took 7 s of it). The answer is the cold solve's: the forces differ
+    by 3.8e-5 (two equilibria of the discrete law, both within ``tol``; the law term lets the tractions miss the law by
+    0.1 % at 1e-6)."""
+    before = _cohesive_solver(N, 7.0, 0.001)()
+    solve = _cohesive_solver(N, 7.0, 0.0015)
+    cold, warm = solve(), solve(initial_pressure=before.pressure, initial_penetration=0.001)
+    assert cold.converged and warm.converged and warm.residual <= 1e-6
+    assert warm.solver.startswith("cohesive-newton") and warm.iterations <= 10
+    assert math.isclose(warm.mean_pressure, cold.mean_pressure, rel_tol=1e-3)
+
+
+def test_first_newton_system_that_stagnates_ends_the_short_try():
+    """:class:`~contactlib.solvers.adhesive.cohesive_newton.CohesiveNewton` with ``first_krylov``: where the first
+    step's GMRES does not reach its forcing within that many iterations, the solve ends with no step taken (the start
+    comes back as it was, unconverged), having spent at most those iterations. Without the bound the same solve from
+    the open state (approach 0.0015, lambda 7) takes its first step after 6 iterations and converges in 20 steps."""
+    from contactlib.solvers.adhesive.cohesive_law import grid_law
+    from contactlib.solvers.adhesive.cohesive_newton import CohesiveNewton
+
+    h = contactlib.surfaces.paraboloid(N, length=LENGTH, radius=R)
+    setup = contactlib.prepare(h, E=E, nu=NU, periodic=False, adhesion=law(7.0)).loaded(penetration=0.0015)
+    adhesion = grid_law(law(7.0), setup.operator)
+    start = np.zeros(h.shape)
+    for first in (2, None):
+        newton = CohesiveNewton(setup.operator, setup.values, adhesion, None, 0.0015, 1e-6, 60, krylov=2000,
+                                first_krylov=first)
+        p, _, _, _, steps, krylov, residual, converged = newton(start, 0.0015)
+        if first is not None:
+            assert steps == 0 and krylov <= first and not converged and np.array_equal(p, start)
+        else:
+            assert steps > 0 and krylov > 2

@@ -39,6 +39,11 @@ Two methods, tried in this order:
    one whose continuation in the range is lost at a stage stops there (:data:`LOST_STAGE`), unconverged, for the
    path's own fallbacks (:func:`contactlib.adhesion_curve`: midpoints, then the cold and open starts).
 
+A Maugis step along a penetration path (a warm start given with its approach) is first tried by Newton at the law
+itself, briefly (:data:`SHORT_KRYLOV`): from the last state when loading, from the frozen traction's first attempt
+when unloading; only where that try fails does the step go the way above. On issue 38's sphere on 512^2 a converging
+try costs 2-4 s against about 7 s for the continuation in the range it replaces.
+
 A Maugis law whose process zone the grid does not resolve is solved as :mod:`.cohesive_law` regularises it (its ramp
 widened, its zone floored at :data:`.cohesive_law.ZONE_FLOOR` elements). There, and wherever the zone spans fewer
 than :data:`NARROW_ZONE` elements, the frozen traction's contact edge creeps an element in 40-100 rounds, and Newton
@@ -112,19 +117,19 @@ with another forcing then lands where the first did not: issue 38's sphere on 38
 512^2, lambda 3.5-10, approaches 0.001 and 0.002) every one converges, 6-17x the plain solve, 9x the median
 (``benchmarks/bench_maugis.py``)."""
 
-PATH_KRYLOV = 150
+SHORT_KRYLOV = 150
 """GMRES iterations of a Maugis path step's first try: Newton at the law itself, from the last state when loading (the
 contact grows) and from the frozen traction's first attempt when unloading (a Newton step from the last state itself
 there met a first system that did not converge). On issue 38's sphere on 512^2 the converging tries took 63-137
-(9-17 Newton steps); those that fail are cut here or by :data:`PATH_FIRST_KRYLOV`, and the step goes on as a cold
+(9-17 Newton steps); those that fail are cut here or by :data:`SHORT_FIRST_KRYLOV`, and the step goes on as a cold
 one would. That sphere's paths of 13 states (``benchmarks/bench_maugis.py --path 7``) then took 90 s against 101-105 s
 at lambda 7, 120 s against 147 s at lambda 10, 106 s against 136 s at lambda 3.5 (same machine, one run each)."""
 
-PATH_FIRST_KRYLOV = 40
+SHORT_FIRST_KRYLOV = 40
 """GMRES iterations of that try's first Newton step: where its system does not converge within them the start is too
 far for a short try (the tries that converged took 6-31 there, those that failed stagnated to 200)."""
 
-PATH_FINISH = 1e-4
+SHORT_FINISH = 1e-4
 """A path step's try that stops above ``tol`` but within this residual is finished by the frozen traction
 (:func:`solve_cohesive`'s ``finished``): on issue 38's sphere at lambda 10 on 512^2 two loading tries stopped at 1.4e-5
 and 2e-5, a step took 5-9 s more without the finish."""
@@ -258,12 +263,12 @@ def solve_cohesive(
         method = "cohesive-newton+frozen-traction"
         return (*finish[:4], result[4], result[5], *finish[6:])
 
-    def path_try(p, delta):
-        """A path step's short try at the law itself (:data:`PATH_KRYLOV`), finished by the frozen traction from
-        within :data:`PATH_FINISH`; None where it does not converge."""
+    def short_try(p, delta):
+        """A short try at the law itself (:data:`SHORT_KRYLOV`), finished by the frozen traction from
+        within :data:`SHORT_FINISH`; None where it does not converge."""
         nonlocal method
-        solved = newton(adhesion, p, delta, krylov=PATH_KRYLOV, first_krylov=PATH_FIRST_KRYLOV)
-        if not solved[-1] and solved[6] <= PATH_FINISH:
+        solved = newton(adhesion, p, delta, krylov=SHORT_KRYLOV, first_krylov=SHORT_FIRST_KRYLOV)
+        if not solved[-1] and solved[6] <= SHORT_FINISH:
             solved = finished(solved)
         if not solved[-1]:
             return None
@@ -272,16 +277,17 @@ def solve_cohesive(
         return solved
 
     if path_step > 0.0:  # loading: Newton at the law straight from the last state
-        result = path_try(p, delta)
+        result = short_try(p, delta)
     if result is None and solve_repulsive is not None:  # cold: its first round is the non-adhesive solve, to a
         result = FrozenTraction(operator, heights, adhesion, mean_pressure, penetration, tol,  # loose tolerance
                                  solve_repulsive)(p, delta)
         if path_step < 0.0 and result is not None and not result[-1] and np.isfinite(result[6]):
             # unloading: Newton at the law from the frozen traction's first attempt
-            result = path_try(result[0], result[1]) or result
+            result = short_try(result[0], result[1]) or result
         if result is not None and not result[-1] and np.isfinite(result[6]) and not narrow:
             result = _frozen_continuation(operator, heights, adhesion, mean_pressure, penetration, tol,
-                                          solve_repulsive, p, delta, result)
+                                          solve_repulsive, p, delta, result,
+                                          short_try if adhesion.model == "maugis" and p is None else None)
     if result is None or not result[-1]:  # the frozen-traction iteration stalled: semi-smooth Newton
         method = "cohesive-newton"
         wider = adhesion.widened()
@@ -332,18 +338,27 @@ def solve_cohesive(
 
 
 def _frozen_continuation(operator, heights, adhesion, mean_pressure, penetration, tol, solve_repulsive, p, delta,
-                         stalled):
+                         stalled, short_try):
     """The frozen traction along the ranges :data:`FROZEN_RANGES` (times the law's), from ``(p, delta)``, each stage
     warm-started from the last one's state, the intermediate ones to :data:`FROZEN_LOOSE_TOL` and every stage given
     :data:`FROZEN_STALL_ROUNDS` before its stall check. A longer range is a smaller Maugis parameter (the same work,
     a lower peak stress): a longer process zone, which the fixed point resolves in few rounds, and a start for the
-    next stage whose contact edge is already within an element or two of its place. Returns the last stage's
-    result (its ``iterations`` and rounds those of every stage), or ``stalled`` (the first attempt's) where a
-    stage unloads the contact or none gets closer than it."""
+    next stage whose contact edge is already within an element or two of its place. Before the last stage (the law
+    itself), ``short_try(p, delta)`` (Newton at the law, :data:`SHORT_KRYLOV`; None: none) from the stage before:
+    where its answer converges it is returned. A cold Maugis solve only: from a warm start on a rough 64^2 surface
+    (exponential law) Newton left the branch the path was on (the unloading state came back with the loading state's
+    contact, 0.236 against 0.245), and a path's Maugis steps have their own try first. Else the last stage's result (its ``iterations`` and rounds those of every
+    stage), or ``stalled`` (the first attempt's) where a stage unloads the contact or none gets closer than it."""
     iterations, rounds, result = stalled[4], stalled[5], None
     for factor in FROZEN_RANGES:
         last = factor == FROZEN_RANGES[-1]
         law = adhesion if last else adhesion.replace(range=adhesion.range * factor)
+        if last and result is not None and short_try is not None:
+            # the last stage's edge creeps an element every few rounds (issue 38's sphere on 512^2 at lambda 3.5:
+            # 50-100 rounds, 4-11 s), where Newton from the stage before converged in 5 steps (1.2 s)
+            tried = short_try(p, delta)
+            if tried is not None:
+                return tried
         stage = FrozenTraction(operator, heights, law, mean_pressure, penetration,
                                 tol if last else max(tol, FROZEN_LOOSE_TOL), solve_repulsive,
                                 stall_rounds=FROZEN_FINAL_STALL_ROUNDS if last and adhesion.regularised
