@@ -52,9 +52,9 @@ in the range, from that attempt's best state. Newton moves the contact edge wher
 answer its steps can flip the edge's active set back and forth (no halving then helps); it stops there, and the
 frozen traction, whose rounds do not flip, finishes from its best state. Which of two nearby answers the last stage
 reaches turns on how inexact its steps are, so it is tried at two GMRES forcings (:data:`LAST_STAGE_FORCINGS`).
-Issue 38's sphere, non-periodic, lambda 3.5-10: 5.5-6.9x the plain solve on 256^2 against 18-29x before these
-changes; 7.3-8.0x on 512^2 at lambda 5-10 (the grid's law: :data:`.cohesive_law.RAMP_GAIN`), 14.9x at lambda 3.5, where
-the frozen traction's continuation solves a resolved zone (``benchmarks/bench_maugis.py``).
+Issue 38's sphere, non-periodic, lambda 3.5-10: 5.2-5.8x the plain solve on 256^2 against 18-29x before these
+changes; 6.7-9.3x on 512^2 (the grid's law: :data:`.cohesive_law.RAMP_GAIN`; at lambda 3.5, a resolved zone, the
+frozen traction's continuation finished by a short Newton try, :data:`SHORT_KRYLOV`; ``benchmarks/bench_maugis.py``).
 
 A solve that does not meet ``tol`` comes back ``converged=False``. The residual is scale-free: the mean
 ``|phi| / c``, the interpenetration and the repulsive traction's weighted mean gap (``sum |p_r| |g| / sum |p_r|``,
@@ -118,21 +118,29 @@ with another forcing then lands where the first did not: issue 38's sphere on 38
 (``benchmarks/bench_maugis.py``)."""
 
 SHORT_KRYLOV = 150
-"""GMRES iterations of a Maugis path step's first try: Newton at the law itself, from the last state when loading (the
-contact grows) and from the frozen traction's first attempt when unloading (a Newton step from the last state itself
-there met a first system that did not converge). On issue 38's sphere on 512^2 the converging tries took 63-137
-(9-17 Newton steps); those that fail are cut here or by :data:`SHORT_FIRST_KRYLOV`, and the step goes on as a cold
-one would. That sphere's paths of 13 states (``benchmarks/bench_maugis.py --path 7``) then took 90 s against 101-105 s
-at lambda 7, 120 s against 147 s at lambda 10, 106 s against 136 s at lambda 3.5 (same machine, one run each)."""
+"""GMRES iterations of a short try at the law itself (Newton, from a state near the answer). Two places: a Maugis step
+along a penetration path, from the last state when loading (the contact grows) and from the frozen traction's first
+attempt when unloading (from the last state itself the first system of an unloading step did not converge); and a
+cold Maugis solve's frozen-traction continuation, before its last stage, from the stage before. Those that fail are cut
+here or by :data:`SHORT_FIRST_KRYLOV`, and the solve goes on as before. On issue 38's sphere on 512^2 the converging
+path tries took 63-137 (9-17 Newton steps, 2-4 s, against about 7 s for the continuation in the range), and the cold
+solve at lambda 3.5 took 52 (5 steps, 1.2 s; the last frozen stage there took 50-100 rounds, 4-11 s). Paths of 13
+states (``benchmarks/bench_maugis.py --path 7``, ``benchmarks/RESULTS.md`` "After 8b9df0c"): 70 s at lambda 3.5 against
+113 s, 86 s at lambda 7 against 98 s, 133 s at lambda 10 against 107 s (that path's first and last states, where the
+law jumps in, go the long way either way; the machine was slower in this run: the plain solve 0.87 s against 0.68 s);
+the single solve at lambda 3.5: 6.5 s against 10 s."""
 
 SHORT_FIRST_KRYLOV = 40
-"""GMRES iterations of that try's first Newton step: where its system does not converge within them the start is too
-far for a short try (the tries that converged took 6-31 there, those that failed stagnated to 200)."""
+"""GMRES iterations of a short try's first Newton step: where its system does not converge within them the start is
+too far for a short try (on issue 38's sphere on 512^2 the tries that converged took 6-31 there, those that failed
+stagnated to 200)."""
 
 SHORT_FINISH = 1e-4
-"""A path step's try that stops above ``tol`` but within this residual is finished by the frozen traction
+"""A short try that stops above ``tol`` but within this residual is finished by the frozen traction
 (:func:`solve_cohesive`'s ``finished``): on issue 38's sphere at lambda 10 on 512^2 two loading tries stopped at 1.4e-5
-and 2e-5, a step took 5-9 s more without the finish."""
+and 2e-5, a step took 5-9 s more without the finish. At 1e-3 the finishes that failed cost 100 rounds (14 s); with a
+stall bound of 12 or 20 rounds on them, finishes that converge in 26-41 rounds were cut (the lambda-10 path: 146-150 s
+against 120-128 s)."""
 
 LOST_STAGE = 1e-4
 """A warm-started solve whose continuation in the range leaves an intermediate stage above this residual stops there,
