@@ -41,8 +41,10 @@ Two methods, tried in this order:
 
 A Maugis step along a penetration path (a warm start given with its approach) is first tried by Newton at the law
 itself, briefly (:data:`SHORT_KRYLOV`): from the last state when loading, from the frozen traction's first attempt
-when unloading; only where that try fails does the step go the way above. On issue 38's sphere on 512^2 a converging
-try costs 2-4 s against about 7 s for the continuation in the range it replaces.
+when unloading; only where that try fails does the step go the way above (and not at all in a narrow zone whose law
+may yet be widened, where it failed). On issue 38's sphere on 512^2 a converging try costs 2-4 s against about 7 s
+for the continuation in the range it replaces. A cold Maugis solve tries it before the frozen-traction continuation's
+last stage.
 
 A Maugis law whose process zone the grid does not resolve is solved as :mod:`.cohesive_law` regularises it (its ramp
 widened, its zone floored at :data:`.cohesive_law.ZONE_FLOOR` elements). There, and wherever the zone spans fewer
@@ -286,8 +288,9 @@ def solve_cohesive(
 
     if path_step > 0.0:  # loading: Newton at the law straight from the last state
         result = short_try(p, delta)
-    if result is None and solve_repulsive is not None:  # cold: its first round is the non-adhesive solve, to a
-        result = FrozenTraction(operator, heights, adhesion, mean_pressure, penetration, tol,  # loose tolerance
+    if result is None and solve_repulsive is not None:
+        # cold, its first round is the non-adhesive solve, to a loose tolerance
+        result = FrozenTraction(operator, heights, adhesion, mean_pressure, penetration, tol,
                                  solve_repulsive)(p, delta)
         if path_step < 0.0 and result is not None and not result[-1] and np.isfinite(result[6]):
             # unloading: Newton at the law from the frozen traction's first attempt
@@ -355,8 +358,9 @@ def _frozen_continuation(operator, heights, adhesion, mean_pressure, penetration
     itself), ``short_try(p, delta)`` (Newton at the law, :data:`SHORT_KRYLOV`; None: none) from the stage before:
     where its answer converges it is returned. A cold Maugis solve only: from a warm start on a rough 64^2 surface
     (exponential law) Newton left the branch the path was on (the unloading state came back with the loading state's
-    contact, 0.236 against 0.245), and a path's Maugis steps have their own try first. Else the last stage's result (its ``iterations`` and rounds those of every
-    stage), or ``stalled`` (the first attempt's) where a stage unloads the contact or none gets closer than it."""
+    contact, 0.236 against 0.245), and a path's Maugis steps have their own try first. Else the last stage's result
+    (its ``iterations`` and rounds those of every stage), or ``stalled`` (the first attempt's) where a stage unloads
+    the contact or none gets closer than it."""
     iterations, rounds, result = stalled[4], stalled[5], None
     for factor in FROZEN_RANGES:
         last = factor == FROZEN_RANGES[-1]
