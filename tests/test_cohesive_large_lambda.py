@@ -225,8 +225,8 @@ def test_first_state_past_the_jump_in_is_reached_from_contact():
     ramp to twice the range) reaches 0.56e-3 apart and jumps in from between 0.57e-3 and 0.54e-3, so there the state is
     in contact: the JKR-like disc, about a quarter of the window. No start at the state reaches it (the open one
     stalls, the cold one is the open one); the path reaches it from the contact at the mirrored approach, unloading
-    through midpoints, as its own unloading half does (area 0.2666 there). The parent's law reached 0.44e-3 apart, and
-    the open state held."""
+    in one step (through midpoints where that fails), as its own unloading half does (area 0.2666 there). The law of
+    the commit that brought this test reached 0.44e-3 apart, and the open state held."""
     h = contactlib.surfaces.paraboloid(512, length=LENGTH, radius=R)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
