@@ -183,9 +183,14 @@ def _bisected_step(setup, adhesion, args, warm, warm_d, value, depth=BISECTIONS)
         state = _bisected_step(setup, adhesion, args, warm, warm_d, middle, depth - 1)
     if state is None:
         return None
-    done, _ = _cohesive_step(setup, adhesion, args, state.pressure, state.penetration, cold=False)
-    return done if done is not None else _bisected_step(setup, adhesion, args, state.pressure, state.penetration,
-                                                        value, depth - 1)
+    return _stepped(setup, adhesion, args, state.pressure, state.penetration, value, depth - 1)
+
+
+def _stepped(setup, adhesion, args, warm, warm_d, value, depth=BISECTIONS):
+    """The state at penetration ``value`` from the warm start ``(warm, warm_d)`` in one step, through midpoints
+    (:func:`_bisected_step`, ``depth`` halvings) where that fails; None where both fail."""
+    done, _ = _cohesive_step(setup, adhesion, args, warm, warm_d, cold=False)
+    return done if done is not None else _bisected_step(setup, adhesion, args, warm, warm_d, value, depth)
 
 
 def _from_contact(setup, adhesion, args, value):
@@ -198,10 +203,7 @@ def _from_contact(setup, adhesion, args, value):
     touching, _ = _cohesive_step(setup, adhesion, dict(args, penetration=-value), None, None)
     if touching is None:
         return None
-    state, _ = _cohesive_step(setup, adhesion, args, touching.pressure, touching.penetration, cold=False)
-    if state is not None:
-        return state
-    return _bisected_step(setup, adhesion, args, touching.pressure, touching.penetration, value)
+    return _stepped(setup, adhesion, args, touching.pressure, touching.penetration, value)
 
 
 def _cohesive_path(setup, adhesion, path, load_control):
